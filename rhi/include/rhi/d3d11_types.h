@@ -1,0 +1,682 @@
+// Direct3D 11 value types: enums, flags and descriptor structs.
+//
+// Every name is the D3D11 name without its `D3D11_` prefix (DXGI names keep
+// `DXGI_`), every enum value is the D3D11 value, and every struct has the D3D11
+// field names and order, so porting D3D11 code is a rename: `D3D11_BLEND_ONE`
+// becomes `rhi::BLEND_ONE`, `D3D11_BLEND_DESC` becomes `rhi::BLEND_DESC`.
+// Nothing here knows about Vulkan.
+#pragma once
+
+#include <cstdint>
+
+namespace rhi {
+
+using UINT = uint32_t;
+using INT = int32_t;
+using UINT8 = uint8_t;
+using UINT64 = uint64_t;
+using FLOAT = float;
+using BOOL = int32_t;
+using HRESULT = int32_t;
+using LPCSTR = const char*;
+using SIZE_T = uint64_t;
+
+inline constexpr BOOL TRUE = 1;
+inline constexpr BOOL FALSE = 0;
+
+// HRESULT values the runtime returns (the Windows values).
+inline constexpr HRESULT S_OK = 0;
+inline constexpr HRESULT S_FALSE = 1;
+inline constexpr HRESULT E_FAIL = static_cast<HRESULT>(0x80004005u);
+inline constexpr HRESULT E_INVALIDARG = static_cast<HRESULT>(0x80070057u);
+inline constexpr HRESULT E_OUTOFMEMORY = static_cast<HRESULT>(0x8007000Eu);
+inline constexpr HRESULT E_NOTIMPL = static_cast<HRESULT>(0x80004001u);
+inline constexpr HRESULT DXGI_ERROR_UNSUPPORTED = static_cast<HRESULT>(0x887A0004u);
+inline constexpr HRESULT DXGI_ERROR_WAS_STILL_DRAWING = static_cast<HRESULT>(0x887A000Au);
+inline constexpr HRESULT DXGI_ERROR_DEVICE_REMOVED = static_cast<HRESULT>(0x887A0005u);
+inline constexpr bool SUCCEEDED(HRESULT hr) { return hr >= 0; }
+inline constexpr bool FAILED(HRESULT hr) { return hr < 0; }
+
+inline constexpr UINT SIMULTANEOUS_RENDER_TARGET_COUNT = 8;
+inline constexpr UINT IA_VERTEX_INPUT_RESOURCE_SLOT_COUNT = 32;
+inline constexpr UINT COMMONSHADER_CONSTANT_BUFFER_API_SLOT_COUNT = 14;
+inline constexpr UINT COMMONSHADER_INPUT_RESOURCE_SLOT_COUNT = 128;
+inline constexpr UINT COMMONSHADER_SAMPLER_SLOT_COUNT = 16;
+inline constexpr UINT PS_CS_UAV_REGISTER_COUNT = 8;
+inline constexpr UINT VIEWPORT_AND_SCISSORRECT_OBJECT_COUNT_PER_PIPELINE = 16;
+inline constexpr UINT SO_BUFFER_SLOT_COUNT = 4;
+inline constexpr UINT SO_STREAM_COUNT = 4;
+inline constexpr UINT SO_NO_RASTERIZED_STREAM = 0xffffffffu;
+inline constexpr UINT APPEND_ALIGNED_ELEMENT = 0xffffffffu;
+inline constexpr UINT DEFAULT_SAMPLE_MASK = 0xffffffffu;
+inline constexpr UINT8 DEFAULT_STENCIL_READ_MASK = 0xff;
+inline constexpr UINT8 DEFAULT_STENCIL_WRITE_MASK = 0xff;
+inline constexpr FLOAT FLOAT32_MAX = 3.402823466e+38f;
+inline constexpr UINT REQ_MAXANISOTROPY = 16;
+
+enum DXGI_FORMAT : UINT {
+  DXGI_FORMAT_UNKNOWN = 0,
+  DXGI_FORMAT_R32G32B32A32_TYPELESS = 1,
+  DXGI_FORMAT_R32G32B32A32_FLOAT = 2,
+  DXGI_FORMAT_R32G32B32A32_UINT = 3,
+  DXGI_FORMAT_R32G32B32A32_SINT = 4,
+  DXGI_FORMAT_R32G32B32_TYPELESS = 5,
+  DXGI_FORMAT_R32G32B32_FLOAT = 6,
+  DXGI_FORMAT_R32G32B32_UINT = 7,
+  DXGI_FORMAT_R32G32B32_SINT = 8,
+  DXGI_FORMAT_R16G16B16A16_TYPELESS = 9,
+  DXGI_FORMAT_R16G16B16A16_FLOAT = 10,
+  DXGI_FORMAT_R16G16B16A16_UNORM = 11,
+  DXGI_FORMAT_R16G16B16A16_UINT = 12,
+  DXGI_FORMAT_R16G16B16A16_SNORM = 13,
+  DXGI_FORMAT_R16G16B16A16_SINT = 14,
+  DXGI_FORMAT_R32G32_TYPELESS = 15,
+  DXGI_FORMAT_R32G32_FLOAT = 16,
+  DXGI_FORMAT_R32G32_UINT = 17,
+  DXGI_FORMAT_R32G32_SINT = 18,
+  DXGI_FORMAT_R10G10B10A2_TYPELESS = 23,
+  DXGI_FORMAT_R10G10B10A2_UNORM = 24,
+  DXGI_FORMAT_R10G10B10A2_UINT = 25,
+  DXGI_FORMAT_R11G11B10_FLOAT = 26,
+  DXGI_FORMAT_R8G8B8A8_TYPELESS = 27,
+  DXGI_FORMAT_R8G8B8A8_UNORM = 28,
+  DXGI_FORMAT_R8G8B8A8_UNORM_SRGB = 29,
+  DXGI_FORMAT_R8G8B8A8_UINT = 30,
+  DXGI_FORMAT_R8G8B8A8_SNORM = 31,
+  DXGI_FORMAT_R8G8B8A8_SINT = 32,
+  DXGI_FORMAT_R16G16_TYPELESS = 33,
+  DXGI_FORMAT_R16G16_FLOAT = 34,
+  DXGI_FORMAT_R16G16_UNORM = 35,
+  DXGI_FORMAT_R16G16_UINT = 36,
+  DXGI_FORMAT_R16G16_SNORM = 37,
+  DXGI_FORMAT_R16G16_SINT = 38,
+  DXGI_FORMAT_R32_TYPELESS = 39,
+  DXGI_FORMAT_D32_FLOAT = 40,
+  DXGI_FORMAT_R32_FLOAT = 41,
+  DXGI_FORMAT_R32_UINT = 42,
+  DXGI_FORMAT_R32_SINT = 43,
+  DXGI_FORMAT_R24G8_TYPELESS = 44,
+  DXGI_FORMAT_D24_UNORM_S8_UINT = 45,
+  DXGI_FORMAT_R24_UNORM_X8_TYPELESS = 46,
+  DXGI_FORMAT_R8G8_TYPELESS = 48,
+  DXGI_FORMAT_R8G8_UNORM = 49,
+  DXGI_FORMAT_R8G8_UINT = 50,
+  DXGI_FORMAT_R8G8_SNORM = 51,
+  DXGI_FORMAT_R8G8_SINT = 52,
+  DXGI_FORMAT_R16_TYPELESS = 53,
+  DXGI_FORMAT_R16_FLOAT = 54,
+  DXGI_FORMAT_D16_UNORM = 55,
+  DXGI_FORMAT_R16_UNORM = 56,
+  DXGI_FORMAT_R16_UINT = 57,
+  DXGI_FORMAT_R16_SNORM = 58,
+  DXGI_FORMAT_R16_SINT = 59,
+  DXGI_FORMAT_R8_TYPELESS = 60,
+  DXGI_FORMAT_R8_UNORM = 61,
+  DXGI_FORMAT_R8_UINT = 62,
+  DXGI_FORMAT_R8_SNORM = 63,
+  DXGI_FORMAT_R8_SINT = 64,
+  DXGI_FORMAT_A8_UNORM = 65,
+  DXGI_FORMAT_B8G8R8A8_UNORM = 87,
+  DXGI_FORMAT_B8G8R8X8_UNORM = 88,
+  DXGI_FORMAT_B8G8R8A8_TYPELESS = 90,
+  DXGI_FORMAT_B8G8R8A8_UNORM_SRGB = 91,
+  DXGI_FORMAT_B8G8R8X8_TYPELESS = 92,
+  DXGI_FORMAT_B8G8R8X8_UNORM_SRGB = 93,
+};
+
+struct DXGI_SAMPLE_DESC {
+  UINT Count = 1;
+  UINT Quality = 0;
+};
+
+// ---------------------------------------------------------------------------
+// Output merger
+
+enum BLEND : UINT {
+  BLEND_ZERO = 1,
+  BLEND_ONE = 2,
+  BLEND_SRC_COLOR = 3,
+  BLEND_INV_SRC_COLOR = 4,
+  BLEND_SRC_ALPHA = 5,
+  BLEND_INV_SRC_ALPHA = 6,
+  BLEND_DEST_ALPHA = 7,
+  BLEND_INV_DEST_ALPHA = 8,
+  BLEND_DEST_COLOR = 9,
+  BLEND_INV_DEST_COLOR = 10,
+  BLEND_SRC_ALPHA_SAT = 11,
+  BLEND_BLEND_FACTOR = 14,
+  BLEND_INV_BLEND_FACTOR = 15,
+  BLEND_SRC1_COLOR = 16,
+  BLEND_INV_SRC1_COLOR = 17,
+  BLEND_SRC1_ALPHA = 18,
+  BLEND_INV_SRC1_ALPHA = 19,
+};
+
+enum BLEND_OP : UINT {
+  BLEND_OP_ADD = 1,
+  BLEND_OP_SUBTRACT = 2,
+  BLEND_OP_REV_SUBTRACT = 3,
+  BLEND_OP_MIN = 4,
+  BLEND_OP_MAX = 5,
+};
+
+enum COLOR_WRITE_ENABLE : UINT8 {
+  COLOR_WRITE_ENABLE_RED = 1,
+  COLOR_WRITE_ENABLE_GREEN = 2,
+  COLOR_WRITE_ENABLE_BLUE = 4,
+  COLOR_WRITE_ENABLE_ALPHA = 8,
+  COLOR_WRITE_ENABLE_ALL = 15,
+};
+
+struct RENDER_TARGET_BLEND_DESC {
+  BOOL BlendEnable = FALSE;
+  BLEND SrcBlend = BLEND_ONE;
+  BLEND DestBlend = BLEND_ZERO;
+  BLEND_OP BlendOp = BLEND_OP_ADD;
+  BLEND SrcBlendAlpha = BLEND_ONE;
+  BLEND DestBlendAlpha = BLEND_ZERO;
+  BLEND_OP BlendOpAlpha = BLEND_OP_ADD;
+  UINT8 RenderTargetWriteMask = COLOR_WRITE_ENABLE_ALL;
+};
+
+// Default member values are the D3D11 defaults (CD3D11_BLEND_DESC(D3D11_DEFAULT)).
+struct BLEND_DESC {
+  BOOL AlphaToCoverageEnable = FALSE;
+  BOOL IndependentBlendEnable = FALSE;
+  RENDER_TARGET_BLEND_DESC RenderTarget[SIMULTANEOUS_RENDER_TARGET_COUNT];
+};
+
+enum COMPARISON_FUNC : UINT {
+  COMPARISON_NEVER = 1,
+  COMPARISON_LESS = 2,
+  COMPARISON_EQUAL = 3,
+  COMPARISON_LESS_EQUAL = 4,
+  COMPARISON_GREATER = 5,
+  COMPARISON_NOT_EQUAL = 6,
+  COMPARISON_GREATER_EQUAL = 7,
+  COMPARISON_ALWAYS = 8,
+};
+
+enum DEPTH_WRITE_MASK : UINT {
+  DEPTH_WRITE_MASK_ZERO = 0,
+  DEPTH_WRITE_MASK_ALL = 1,
+};
+
+enum STENCIL_OP : UINT {
+  STENCIL_OP_KEEP = 1,
+  STENCIL_OP_ZERO = 2,
+  STENCIL_OP_REPLACE = 3,
+  STENCIL_OP_INCR_SAT = 4,
+  STENCIL_OP_DECR_SAT = 5,
+  STENCIL_OP_INVERT = 6,
+  STENCIL_OP_INCR = 7,
+  STENCIL_OP_DECR = 8,
+};
+
+struct DEPTH_STENCILOP_DESC {
+  STENCIL_OP StencilFailOp = STENCIL_OP_KEEP;
+  STENCIL_OP StencilDepthFailOp = STENCIL_OP_KEEP;
+  STENCIL_OP StencilPassOp = STENCIL_OP_KEEP;
+  COMPARISON_FUNC StencilFunc = COMPARISON_ALWAYS;
+};
+
+// Default member values are the D3D11 defaults.
+struct DEPTH_STENCIL_DESC {
+  BOOL DepthEnable = TRUE;
+  DEPTH_WRITE_MASK DepthWriteMask = DEPTH_WRITE_MASK_ALL;
+  COMPARISON_FUNC DepthFunc = COMPARISON_LESS;
+  BOOL StencilEnable = FALSE;
+  UINT8 StencilReadMask = DEFAULT_STENCIL_READ_MASK;
+  UINT8 StencilWriteMask = DEFAULT_STENCIL_WRITE_MASK;
+  DEPTH_STENCILOP_DESC FrontFace;
+  DEPTH_STENCILOP_DESC BackFace;
+};
+
+// ---------------------------------------------------------------------------
+// Rasterizer
+
+enum FILL_MODE : UINT {
+  FILL_WIREFRAME = 2,
+  FILL_SOLID = 3,
+};
+
+enum CULL_MODE : UINT {
+  CULL_NONE = 1,
+  CULL_FRONT = 2,
+  CULL_BACK = 3,
+};
+
+// Default member values are the D3D11 defaults.
+struct RASTERIZER_DESC {
+  FILL_MODE FillMode = FILL_SOLID;
+  CULL_MODE CullMode = CULL_BACK;
+  BOOL FrontCounterClockwise = FALSE;
+  INT DepthBias = 0;
+  FLOAT DepthBiasClamp = 0.0f;
+  FLOAT SlopeScaledDepthBias = 0.0f;
+  BOOL DepthClipEnable = TRUE;
+  BOOL ScissorEnable = FALSE;
+  BOOL MultisampleEnable = FALSE;
+  BOOL AntialiasedLineEnable = FALSE;
+};
+
+struct VIEWPORT {
+  FLOAT TopLeftX;
+  FLOAT TopLeftY;
+  FLOAT Width;
+  FLOAT Height;
+  FLOAT MinDepth;
+  FLOAT MaxDepth;
+};
+
+struct RECT {
+  INT left;
+  INT top;
+  INT right;
+  INT bottom;
+};
+
+using D3D11_RECT = RECT;
+
+// ---------------------------------------------------------------------------
+// Samplers
+
+enum FILTER : UINT {
+  FILTER_MIN_MAG_MIP_POINT = 0x00,
+  FILTER_MIN_MAG_POINT_MIP_LINEAR = 0x01,
+  FILTER_MIN_POINT_MAG_LINEAR_MIP_POINT = 0x04,
+  FILTER_MIN_POINT_MAG_MIP_LINEAR = 0x05,
+  FILTER_MIN_LINEAR_MAG_MIP_POINT = 0x10,
+  FILTER_MIN_LINEAR_MAG_POINT_MIP_LINEAR = 0x11,
+  FILTER_MIN_MAG_LINEAR_MIP_POINT = 0x14,
+  FILTER_MIN_MAG_MIP_LINEAR = 0x15,
+  FILTER_ANISOTROPIC = 0x55,
+  FILTER_COMPARISON_MIN_MAG_MIP_POINT = 0x80,
+  FILTER_COMPARISON_MIN_MAG_POINT_MIP_LINEAR = 0x81,
+  FILTER_COMPARISON_MIN_POINT_MAG_LINEAR_MIP_POINT = 0x84,
+  FILTER_COMPARISON_MIN_POINT_MAG_MIP_LINEAR = 0x85,
+  FILTER_COMPARISON_MIN_LINEAR_MAG_MIP_POINT = 0x90,
+  FILTER_COMPARISON_MIN_LINEAR_MAG_POINT_MIP_LINEAR = 0x91,
+  FILTER_COMPARISON_MIN_MAG_LINEAR_MIP_POINT = 0x94,
+  FILTER_COMPARISON_MIN_MAG_MIP_LINEAR = 0x95,
+  FILTER_COMPARISON_ANISOTROPIC = 0xd5,
+};
+
+enum TEXTURE_ADDRESS_MODE : UINT {
+  TEXTURE_ADDRESS_WRAP = 1,
+  TEXTURE_ADDRESS_MIRROR = 2,
+  TEXTURE_ADDRESS_CLAMP = 3,
+  TEXTURE_ADDRESS_BORDER = 4,
+  TEXTURE_ADDRESS_MIRROR_ONCE = 5,
+};
+
+// Default member values are the D3D11 defaults.
+struct SAMPLER_DESC {
+  FILTER Filter = FILTER_MIN_MAG_MIP_LINEAR;
+  TEXTURE_ADDRESS_MODE AddressU = TEXTURE_ADDRESS_CLAMP;
+  TEXTURE_ADDRESS_MODE AddressV = TEXTURE_ADDRESS_CLAMP;
+  TEXTURE_ADDRESS_MODE AddressW = TEXTURE_ADDRESS_CLAMP;
+  FLOAT MipLODBias = 0.0f;
+  UINT MaxAnisotropy = 1;
+  COMPARISON_FUNC ComparisonFunc = COMPARISON_NEVER;
+  FLOAT BorderColor[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+  FLOAT MinLOD = -FLOAT32_MAX;
+  FLOAT MaxLOD = FLOAT32_MAX;
+};
+
+// ---------------------------------------------------------------------------
+// Resources
+
+enum USAGE : UINT {
+  USAGE_DEFAULT = 0,
+  USAGE_IMMUTABLE = 1,
+  USAGE_DYNAMIC = 2,
+  USAGE_STAGING = 3,
+};
+
+enum BIND_FLAG : UINT {
+  BIND_VERTEX_BUFFER = 0x1,
+  BIND_INDEX_BUFFER = 0x2,
+  BIND_CONSTANT_BUFFER = 0x4,
+  BIND_SHADER_RESOURCE = 0x8,
+  BIND_STREAM_OUTPUT = 0x10,
+  BIND_RENDER_TARGET = 0x20,
+  BIND_DEPTH_STENCIL = 0x40,
+  BIND_UNORDERED_ACCESS = 0x80,
+};
+
+enum CPU_ACCESS_FLAG : UINT {
+  CPU_ACCESS_WRITE = 0x10000,
+  CPU_ACCESS_READ = 0x20000,
+};
+
+enum RESOURCE_MISC_FLAG : UINT {
+  RESOURCE_MISC_GENERATE_MIPS = 0x1,
+  RESOURCE_MISC_TEXTURECUBE = 0x4,
+  RESOURCE_MISC_DRAWINDIRECT_ARGS = 0x10,
+  RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS = 0x20,
+  RESOURCE_MISC_BUFFER_STRUCTURED = 0x40,
+};
+
+struct BUFFER_DESC {
+  UINT ByteWidth;
+  USAGE Usage;
+  UINT BindFlags;
+  UINT CPUAccessFlags;
+  UINT MiscFlags;
+  UINT StructureByteStride;
+};
+
+struct TEXTURE1D_DESC {
+  UINT Width;
+  UINT MipLevels;
+  UINT ArraySize;
+  DXGI_FORMAT Format;
+  USAGE Usage;
+  UINT BindFlags;
+  UINT CPUAccessFlags;
+  UINT MiscFlags;
+};
+
+struct TEXTURE2D_DESC {
+  UINT Width;
+  UINT Height;
+  UINT MipLevels;
+  UINT ArraySize;
+  DXGI_FORMAT Format;
+  DXGI_SAMPLE_DESC SampleDesc;
+  USAGE Usage;
+  UINT BindFlags;
+  UINT CPUAccessFlags;
+  UINT MiscFlags;
+};
+
+struct SUBRESOURCE_DATA {
+  const void* pSysMem;
+  UINT SysMemPitch;
+  UINT SysMemSlicePitch;
+};
+
+struct MAPPED_SUBRESOURCE {
+  void* pData;
+  UINT RowPitch;
+  UINT DepthPitch;
+};
+
+struct BOX {
+  UINT left;
+  UINT top;
+  UINT front;
+  UINT right;
+  UINT bottom;
+  UINT back;
+};
+
+enum MAP : UINT {
+  MAP_READ = 1,
+  MAP_WRITE = 2,
+  MAP_READ_WRITE = 3,
+  MAP_WRITE_DISCARD = 4,
+  MAP_WRITE_NO_OVERWRITE = 5,
+};
+
+enum MAP_FLAG : UINT {
+  MAP_FLAG_DO_NOT_WAIT = 0x100000,
+};
+
+enum CLEAR_FLAG : UINT {
+  CLEAR_DEPTH = 0x1,
+  CLEAR_STENCIL = 0x2,
+};
+
+inline constexpr UINT CalcSubresource(UINT mipSlice, UINT arraySlice, UINT mipLevels) {
+  return mipSlice + arraySlice * mipLevels;
+}
+
+// ---------------------------------------------------------------------------
+// Views
+
+enum SRV_DIMENSION : UINT {
+  SRV_DIMENSION_UNKNOWN = 0,
+  SRV_DIMENSION_BUFFER = 1,
+  SRV_DIMENSION_TEXTURE1D = 2,
+  SRV_DIMENSION_TEXTURE1DARRAY = 3,
+  SRV_DIMENSION_TEXTURE2D = 4,
+  SRV_DIMENSION_TEXTURE2DARRAY = 5,
+  SRV_DIMENSION_TEXTURE2DMS = 6,
+  SRV_DIMENSION_TEXTURE2DMSARRAY = 7,
+  SRV_DIMENSION_TEXTURE3D = 8,
+  SRV_DIMENSION_TEXTURECUBE = 9,
+  SRV_DIMENSION_TEXTURECUBEARRAY = 10,
+  SRV_DIMENSION_BUFFEREX = 11,
+};
+
+enum RTV_DIMENSION : UINT {
+  RTV_DIMENSION_UNKNOWN = 0,
+  RTV_DIMENSION_BUFFER = 1,
+  RTV_DIMENSION_TEXTURE1D = 2,
+  RTV_DIMENSION_TEXTURE1DARRAY = 3,
+  RTV_DIMENSION_TEXTURE2D = 4,
+  RTV_DIMENSION_TEXTURE2DARRAY = 5,
+  RTV_DIMENSION_TEXTURE2DMS = 6,
+  RTV_DIMENSION_TEXTURE2DMSARRAY = 7,
+  RTV_DIMENSION_TEXTURE3D = 8,
+};
+
+enum DSV_DIMENSION : UINT {
+  DSV_DIMENSION_UNKNOWN = 0,
+  DSV_DIMENSION_TEXTURE1D = 1,
+  DSV_DIMENSION_TEXTURE1DARRAY = 2,
+  DSV_DIMENSION_TEXTURE2D = 3,
+  DSV_DIMENSION_TEXTURE2DARRAY = 4,
+  DSV_DIMENSION_TEXTURE2DMS = 5,
+  DSV_DIMENSION_TEXTURE2DMSARRAY = 6,
+};
+
+enum UAV_DIMENSION : UINT {
+  UAV_DIMENSION_UNKNOWN = 0,
+  UAV_DIMENSION_BUFFER = 1,
+  UAV_DIMENSION_TEXTURE1D = 2,
+  UAV_DIMENSION_TEXTURE1DARRAY = 3,
+  UAV_DIMENSION_TEXTURE2D = 4,
+  UAV_DIMENSION_TEXTURE2DARRAY = 5,
+  UAV_DIMENSION_TEXTURE3D = 8,
+};
+
+enum BUFFEREX_SRV_FLAG : UINT { BUFFEREX_SRV_FLAG_RAW = 0x1 };
+enum BUFFER_UAV_FLAG : UINT {
+  BUFFER_UAV_FLAG_RAW = 0x1,
+  BUFFER_UAV_FLAG_APPEND = 0x2,
+  BUFFER_UAV_FLAG_COUNTER = 0x4,
+};
+enum DSV_FLAG : UINT {
+  DSV_READ_ONLY_DEPTH = 0x1,
+  DSV_READ_ONLY_STENCIL = 0x2,
+};
+
+struct BUFFER_SRV { UINT FirstElement; UINT NumElements; };
+struct BUFFEREX_SRV { UINT FirstElement; UINT NumElements; UINT Flags; };
+struct TEX1D_SRV { UINT MostDetailedMip; UINT MipLevels; };
+struct TEX1D_ARRAY_SRV { UINT MostDetailedMip; UINT MipLevels; UINT FirstArraySlice; UINT ArraySize; };
+struct TEX2D_SRV { UINT MostDetailedMip; UINT MipLevels; };
+struct TEX2D_ARRAY_SRV { UINT MostDetailedMip; UINT MipLevels; UINT FirstArraySlice; UINT ArraySize; };
+struct TEX2DMS_SRV { UINT UnusedField_NothingToDefine; };
+struct TEX2DMS_ARRAY_SRV { UINT FirstArraySlice; UINT ArraySize; };
+struct TEXCUBE_SRV { UINT MostDetailedMip; UINT MipLevels; };
+
+struct SHADER_RESOURCE_VIEW_DESC {
+  DXGI_FORMAT Format;
+  SRV_DIMENSION ViewDimension;
+  union {
+    BUFFER_SRV Buffer;
+    TEX1D_SRV Texture1D;
+    TEX1D_ARRAY_SRV Texture1DArray;
+    TEX2D_SRV Texture2D;
+    TEX2D_ARRAY_SRV Texture2DArray;
+    TEX2DMS_SRV Texture2DMS;
+    TEX2DMS_ARRAY_SRV Texture2DMSArray;
+    TEXCUBE_SRV TextureCube;
+    BUFFEREX_SRV BufferEx;
+  };
+};
+
+struct TEX1D_RTV { UINT MipSlice; };
+struct TEX1D_ARRAY_RTV { UINT MipSlice; UINT FirstArraySlice; UINT ArraySize; };
+struct TEX2D_RTV { UINT MipSlice; };
+struct TEX2D_ARRAY_RTV { UINT MipSlice; UINT FirstArraySlice; UINT ArraySize; };
+struct TEX2DMS_RTV { UINT UnusedField_NothingToDefine; };
+struct TEX2DMS_ARRAY_RTV { UINT FirstArraySlice; UINT ArraySize; };
+
+struct RENDER_TARGET_VIEW_DESC {
+  DXGI_FORMAT Format;
+  RTV_DIMENSION ViewDimension;
+  union {
+    TEX1D_RTV Texture1D;
+    TEX1D_ARRAY_RTV Texture1DArray;
+    TEX2D_RTV Texture2D;
+    TEX2D_ARRAY_RTV Texture2DArray;
+    TEX2DMS_RTV Texture2DMS;
+    TEX2DMS_ARRAY_RTV Texture2DMSArray;
+  };
+};
+
+struct TEX1D_DSV { UINT MipSlice; };
+struct TEX1D_ARRAY_DSV { UINT MipSlice; UINT FirstArraySlice; UINT ArraySize; };
+struct TEX2D_DSV { UINT MipSlice; };
+struct TEX2D_ARRAY_DSV { UINT MipSlice; UINT FirstArraySlice; UINT ArraySize; };
+struct TEX2DMS_DSV { UINT UnusedField_NothingToDefine; };
+struct TEX2DMS_ARRAY_DSV { UINT FirstArraySlice; UINT ArraySize; };
+
+struct DEPTH_STENCIL_VIEW_DESC {
+  DXGI_FORMAT Format;
+  DSV_DIMENSION ViewDimension;
+  UINT Flags;
+  union {
+    TEX1D_DSV Texture1D;
+    TEX1D_ARRAY_DSV Texture1DArray;
+    TEX2D_DSV Texture2D;
+    TEX2D_ARRAY_DSV Texture2DArray;
+    TEX2DMS_DSV Texture2DMS;
+    TEX2DMS_ARRAY_DSV Texture2DMSArray;
+  };
+};
+
+struct BUFFER_UAV { UINT FirstElement; UINT NumElements; UINT Flags; };
+struct TEX1D_UAV { UINT MipSlice; };
+struct TEX1D_ARRAY_UAV { UINT MipSlice; UINT FirstArraySlice; UINT ArraySize; };
+struct TEX2D_UAV { UINT MipSlice; };
+struct TEX2D_ARRAY_UAV { UINT MipSlice; UINT FirstArraySlice; UINT ArraySize; };
+
+struct UNORDERED_ACCESS_VIEW_DESC {
+  DXGI_FORMAT Format;
+  UAV_DIMENSION ViewDimension;
+  union {
+    BUFFER_UAV Buffer;
+    TEX1D_UAV Texture1D;
+    TEX1D_ARRAY_UAV Texture1DArray;
+    TEX2D_UAV Texture2D;
+    TEX2D_ARRAY_UAV Texture2DArray;
+  };
+};
+
+// ---------------------------------------------------------------------------
+// Input assembler
+
+enum INPUT_CLASSIFICATION : UINT {
+  INPUT_PER_VERTEX_DATA = 0,
+  INPUT_PER_INSTANCE_DATA = 1,
+};
+
+struct INPUT_ELEMENT_DESC {
+  LPCSTR SemanticName;
+  UINT SemanticIndex;
+  DXGI_FORMAT Format;
+  UINT InputSlot;
+  UINT AlignedByteOffset;
+  INPUT_CLASSIFICATION InputSlotClass;
+  UINT InstanceDataStepRate;
+};
+
+enum PRIMITIVE_TOPOLOGY : UINT {
+  PRIMITIVE_TOPOLOGY_UNDEFINED = 0,
+  PRIMITIVE_TOPOLOGY_POINTLIST = 1,
+  PRIMITIVE_TOPOLOGY_LINELIST = 2,
+  PRIMITIVE_TOPOLOGY_LINESTRIP = 3,
+  PRIMITIVE_TOPOLOGY_TRIANGLELIST = 4,
+  PRIMITIVE_TOPOLOGY_TRIANGLESTRIP = 5,
+  PRIMITIVE_TOPOLOGY_LINELIST_ADJ = 10,
+  PRIMITIVE_TOPOLOGY_LINESTRIP_ADJ = 11,
+  PRIMITIVE_TOPOLOGY_TRIANGLELIST_ADJ = 12,
+  PRIMITIVE_TOPOLOGY_TRIANGLESTRIP_ADJ = 13,
+  PRIMITIVE_TOPOLOGY_1_CONTROL_POINT_PATCHLIST = 33,
+  PRIMITIVE_TOPOLOGY_3_CONTROL_POINT_PATCHLIST = 35,
+  PRIMITIVE_TOPOLOGY_4_CONTROL_POINT_PATCHLIST = 36,
+  PRIMITIVE_TOPOLOGY_32_CONTROL_POINT_PATCHLIST = 64,
+};
+
+// ---------------------------------------------------------------------------
+// Stream output
+
+struct SO_DECLARATION_ENTRY {
+  UINT Stream;
+  LPCSTR SemanticName;  // NULL: a gap of ComponentCount components
+  UINT SemanticIndex;
+  UINT8 StartComponent;
+  UINT8 ComponentCount;
+  UINT8 OutputSlot;
+};
+
+// ---------------------------------------------------------------------------
+// Queries
+
+enum QUERY : UINT {
+  QUERY_EVENT = 0,
+  QUERY_OCCLUSION = 1,
+  QUERY_TIMESTAMP = 2,
+  QUERY_TIMESTAMP_DISJOINT = 3,
+  QUERY_PIPELINE_STATISTICS = 4,
+  QUERY_OCCLUSION_PREDICATE = 5,
+  QUERY_SO_STATISTICS = 6,
+  QUERY_SO_OVERFLOW_PREDICATE = 7,
+  QUERY_SO_STATISTICS_STREAM0 = 8,
+  QUERY_SO_STATISTICS_STREAM1 = 9,
+  QUERY_SO_STATISTICS_STREAM2 = 10,
+  QUERY_SO_STATISTICS_STREAM3 = 11,
+  QUERY_SO_OVERFLOW_PREDICATE_STREAM0 = 12,
+  QUERY_SO_OVERFLOW_PREDICATE_STREAM1 = 13,
+  QUERY_SO_OVERFLOW_PREDICATE_STREAM2 = 14,
+  QUERY_SO_OVERFLOW_PREDICATE_STREAM3 = 15,
+};
+
+enum ASYNC_GETDATA_FLAG : UINT { ASYNC_GETDATA_DONOTFLUSH = 0x1 };
+
+struct QUERY_DESC {
+  QUERY Query;
+  UINT MiscFlags;
+};
+
+struct QUERY_DATA_TIMESTAMP_DISJOINT {
+  UINT64 Frequency;
+  BOOL Disjoint;
+};
+
+struct QUERY_DATA_PIPELINE_STATISTICS {
+  UINT64 IAVertices;
+  UINT64 IAPrimitives;
+  UINT64 VSInvocations;
+  UINT64 GSInvocations;
+  UINT64 GSPrimitives;
+  UINT64 CInvocations;
+  UINT64 CPrimitives;
+  UINT64 PSInvocations;
+  UINT64 HSInvocations;
+  UINT64 DSInvocations;
+  UINT64 CSInvocations;
+};
+
+struct QUERY_DATA_SO_STATISTICS {
+  UINT64 NumPrimitivesWritten;
+  UINT64 PrimitivesStorageNeeded;
+};
+
+}  // namespace rhi

@@ -1,0 +1,229 @@
+// The immediate context: D3D11 binding state, recorded into Vulkan commands.
+//
+// Binding calls only store state and mark it dirty. A draw turns the state into
+// a pipeline (looked up in the cache), barriers for every resource it touches,
+// a dynamic-rendering instance (begun lazily, ended only when something needs
+// it ended), push descriptors and the draw itself.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "device.h"
+#include "resource_tracking.h"
+#include "rhi/shader_bindings.h"
+
+namespace rhi::vk {
+
+class BufferImpl;
+class TextureStorage;
+template <class Interface, class Desc>
+class ViewImpl;
+using ShaderResourceViewImpl = ViewImpl<ShaderResourceView, SHADER_RESOURCE_VIEW_DESC>;
+using RenderTargetViewImpl = ViewImpl<RenderTargetView, RENDER_TARGET_VIEW_DESC>;
+using DepthStencilViewImpl = ViewImpl<DepthStencilView, DEPTH_STENCIL_VIEW_DESC>;
+class UnorderedAccessViewImpl;
+class InputLayoutImpl;
+class ShaderCode;
+class QueryImpl;
+struct GraphicsPipeline;
+struct ComputePipeline;
+
+class ContextImpl final : public DeviceContext {
+ public:
+  explicit ContextImpl(DeviceImpl* device);
+  ~ContextImpl() override;
+
+  // The immediate context lives and dies with its device.
+  UINT AddRef() override { return device_->AddRef(); }
+  UINT Release() override { return device_->Release(); }
+  void GetDevice(Device** ppDevice) override {
+    device_->AddRef();
+    *ppDevice = device_;
+  }
+
+  void IASetInputLayout(InputLayout* pInputLayout) override;
+  void IASetVertexBuffers(UINT StartSlot, UINT NumBuffers, Buffer* const* ppVertexBuffers, const UINT* pStrides,
+                          const UINT* pOffsets) override;
+  void IASetIndexBuffer(Buffer* pIndexBuffer, DXGI_FORMAT Format, UINT Offset) override;
+  void IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY Topology) override;
+
+  void VSSetShader(VertexShader* pShader, ClassInstance* const*, UINT) override;
+  void HSSetShader(HullShader* pShader, ClassInstance* const*, UINT) override;
+  void DSSetShader(DomainShader* pShader, ClassInstance* const*, UINT) override;
+  void GSSetShader(GeometryShader* pShader, ClassInstance* const*, UINT) override;
+  void PSSetShader(PixelShader* pShader, ClassInstance* const*, UINT) override;
+  void CSSetShader(ComputeShader* pShader, ClassInstance* const*, UINT) override;
+
+#define RHI_STAGE_BINDINGS(Prefix, Stage)                                                                 \
+  void Prefix##SetConstantBuffers(UINT StartSlot, UINT NumBuffers, Buffer* const* ppBuffers) override {   \
+    SetConstantBuffers(ShaderStage::Stage, StartSlot, NumBuffers, ppBuffers);                            \
+  }                                                                                                       \
+  void Prefix##SetShaderResources(UINT StartSlot, UINT NumViews, ShaderResourceView* const* ppViews) override { \
+    SetShaderResources(ShaderStage::Stage, StartSlot, NumViews, ppViews);                                \
+  }                                                                                                       \
+  void Prefix##SetSamplers(UINT StartSlot, UINT NumSamplers, SamplerState* const* ppSamplers) override {  \
+    SetSamplers(ShaderStage::Stage, StartSlot, NumSamplers, ppSamplers);                                 \
+  }
+  RHI_STAGE_BINDINGS(VS, Vertex)
+  RHI_STAGE_BINDINGS(HS, Hull)
+  RHI_STAGE_BINDINGS(DS, Domain)
+  RHI_STAGE_BINDINGS(GS, Geometry)
+  RHI_STAGE_BINDINGS(PS, Pixel)
+  RHI_STAGE_BINDINGS(CS, Compute)
+#undef RHI_STAGE_BINDINGS
+  void CSSetUnorderedAccessViews(UINT StartSlot, UINT NumUAVs, UnorderedAccessView* const* ppUAVs,
+                                 const UINT* pUAVInitialCounts) override;
+
+  void SOSetTargets(UINT NumBuffers, Buffer* const* ppSOTargets, const UINT* pOffsets) override;
+  void SOGetTargets(UINT NumBuffers, Buffer** ppSOTargets) override;
+
+  void RSSetState(RasterizerState* pRasterizerState) override;
+  void RSSetViewports(UINT NumViewports, const VIEWPORT* pViewports) override;
+  void RSSetScissorRects(UINT NumRects, const RECT* pRects) override;
+
+  void OMSetRenderTargets(UINT NumViews, RenderTargetView* const* ppRenderTargetViews,
+                          DepthStencilView* pDepthStencilView) override;
+  void OMSetBlendState(BlendState* pBlendState, const FLOAT BlendFactor[4], UINT SampleMask) override;
+  void OMSetDepthStencilState(DepthStencilState* pDepthStencilState, UINT StencilRef) override;
+
+  void Draw(UINT VertexCount, UINT StartVertexLocation) override;
+  void DrawIndexed(UINT IndexCount, UINT StartIndexLocation, INT BaseVertexLocation) override;
+  void DrawInstanced(UINT VertexCountPerInstance, UINT InstanceCount, UINT StartVertexLocation,
+                     UINT StartInstanceLocation) override;
+  void DrawIndexedInstanced(UINT IndexCountPerInstance, UINT InstanceCount, UINT StartIndexLocation,
+                            INT BaseVertexLocation, UINT StartInstanceLocation) override;
+  void DrawInstancedIndirect(Buffer* pBufferForArgs, UINT AlignedByteOffsetForArgs) override;
+  void DrawIndexedInstancedIndirect(Buffer* pBufferForArgs, UINT AlignedByteOffsetForArgs) override;
+  void DrawAuto() override;
+  void Dispatch(UINT ThreadGroupCountX, UINT ThreadGroupCountY, UINT ThreadGroupCountZ) override;
+  void DispatchIndirect(Buffer* pBufferForArgs, UINT AlignedByteOffsetForArgs) override;
+
+  void ClearRenderTargetView(RenderTargetView* pRenderTargetView, const FLOAT ColorRGBA[4]) override;
+  void ClearDepthStencilView(DepthStencilView* pDepthStencilView, UINT ClearFlags, FLOAT Depth,
+                             UINT8 Stencil) override;
+  void ClearUnorderedAccessViewUint(UnorderedAccessView* pUnorderedAccessView, const UINT Values[4]) override;
+  void ClearUnorderedAccessViewFloat(UnorderedAccessView* pUnorderedAccessView, const FLOAT Values[4]) override;
+
+  HRESULT Map(Resource* pResource, UINT Subresource, MAP MapType, UINT MapFlags,
+              MAPPED_SUBRESOURCE* pMappedResource) override;
+  void Unmap(Resource* pResource, UINT Subresource) override;
+  void UpdateSubresource(Resource* pDstResource, UINT DstSubresource, const BOX* pDstBox, const void* pSrcData,
+                         UINT SrcRowPitch, UINT SrcDepthPitch) override;
+  void CopyResource(Resource* pDstResource, Resource* pSrcResource) override;
+  void CopySubresourceRegion(Resource* pDstResource, UINT DstSubresource, UINT DstX, UINT DstY, UINT DstZ,
+                             Resource* pSrcResource, UINT SrcSubresource, const BOX* pSrcBox) override;
+  void ResolveSubresource(Resource* pDstResource, UINT DstSubresource, Resource* pSrcResource,
+                          UINT SrcSubresource, DXGI_FORMAT Format) override;
+
+  void Begin(Asynchronous* pAsync) override;
+  void End(Asynchronous* pAsync) override;
+  HRESULT GetData(Asynchronous* pAsync, void* pData, UINT DataSize, UINT GetDataFlags) override;
+
+  void ClearState() override;
+  void Flush() override;
+
+  // Device-side uploads (initial data) go through the context's command stream.
+  void UploadBuffer(BufferImpl& buffer, VkDeviceSize offset, const void* data, VkDeviceSize size);
+  void UploadTexture(TextureStorage& texture, UINT subresource, const BOX* box, const void* data, UINT rowPitch,
+                     UINT depthPitch);
+  void InitializeImageLayout(TextureStorage& texture);
+
+  // Records `use` of `resource`, adding the barrier it needs to the pending batch.
+  // `attachmentInstance`: the rendering instance an attachment write happens in.
+  void Use(TrackedResource& resource, const Access& use, uint64_t attachmentInstance = 0);
+  // Emits the pending barrier batch; ends rendering first when there is one.
+  void FlushBarriers();
+  // Ends the current rendering instance, if any (transfers and barriers need that).
+  void EndRendering();
+  VkCommandBuffer Commands() { return device_->gpu().Commands(); }
+
+ private:
+  struct VertexBufferBinding {
+    ComPtr<BufferImpl> buffer;
+    UINT stride = 0;
+    UINT offset = 0;
+  };
+  struct IndexBufferBinding {
+    ComPtr<BufferImpl> buffer;
+    DXGI_FORMAT format = DXGI_FORMAT_UNKNOWN;
+    UINT offset = 0;
+  };
+  struct StageState {
+    std::shared_ptr<const ShaderCode> shader;
+    ComPtr<DeviceChild> shaderObject;  // keeps the D3D object alive while bound
+    std::array<ComPtr<BufferImpl>, COMMONSHADER_CONSTANT_BUFFER_API_SLOT_COUNT> constantBuffers;
+    std::array<ComPtr<ShaderResourceViewImpl>, COMMONSHADER_INPUT_RESOURCE_SLOT_COUNT> shaderResources;
+    std::array<ComPtr<DeviceChild>, COMMONSHADER_SAMPLER_SLOT_COUNT> samplers;
+  };
+  struct StreamOutTarget {
+    ComPtr<BufferImpl> buffer;
+    UINT offset = 0;  // UINT(-1): append where the last stream-out stopped
+    bool offsetPending = false;  // the next stream-out starts at `offset`, not at the counter
+  };
+
+  void SetShader(ShaderStage stage, DeviceChild* object, std::shared_ptr<const ShaderCode> code);
+  void SetConstantBuffers(ShaderStage stage, UINT start, UINT count, Buffer* const* buffers);
+  void SetShaderResources(ShaderStage stage, UINT start, UINT count, ShaderResourceView* const* views);
+  void SetSamplers(ShaderStage stage, UINT start, UINT count, SamplerState* const* samplers);
+  // D3D11's hazard rule: a resource bound for writing leaves every read binding.
+  void UnbindFromReads(Resource* resource);
+  bool IsBoundForWriting(Resource* resource) const;
+
+  // Draw path (context_draw.cpp).
+  // `indirect`: the buffer a draw reads its arguments from, and how.
+  const GraphicsPipeline* PrepareDraw(const char* call, TrackedResource* indirect = nullptr,
+                                      const Access& indirectUse = uses::kIndirectArgs);
+  void TrackDrawResources(const GraphicsPipeline& pipeline, TrackedResource* indirect, const Access& indirectUse);
+  void BeginRendering();
+  void BindGraphicsState(const GraphicsPipeline& pipeline);
+  void SetViewportsAndScissors();
+  void BindVertexAndIndexBuffers(const GraphicsPipeline& pipeline);
+  void PushDescriptors(VkPipelineBindPoint bindPoint, VkPipelineLayout layout,
+                       const std::vector<VkDescriptorSetLayoutBinding>& bindings);
+  const ComputePipeline* PrepareDispatch(const char* call);
+  void BindCompute(const ComputePipeline& pipeline);
+  VkSampler defaultSampler();
+  void ReportDrawError(const std::string& text);
+  // Stream output (context_stream_out.cpp).
+  void PrepareStreamOutTargets();
+  void BeginStreamOut(const GraphicsPipeline& pipeline);
+  void EndStreamOut(const GraphicsPipeline& pipeline);
+  void WriteDrawAutoArgs(BufferImpl& buffer, UINT stride, UINT vertexBufferOffset);
+
+  DeviceImpl* device_;
+
+  ComPtr<InputLayoutImpl> inputLayout_;
+  std::array<VertexBufferBinding, IA_VERTEX_INPUT_RESOURCE_SLOT_COUNT> vertexBuffers_;
+  IndexBufferBinding indexBuffer_;
+  PRIMITIVE_TOPOLOGY topology_ = PRIMITIVE_TOPOLOGY_UNDEFINED;
+  std::array<StageState, kShaderStageCount> stages_;
+  std::array<ComPtr<UnorderedAccessViewImpl>, PS_CS_UAV_REGISTER_COUNT> computeUavs_;
+  std::array<StreamOutTarget, SO_BUFFER_SLOT_COUNT> streamOut_;
+  ComPtr<DeviceChild> rasterizer_;
+  std::vector<VIEWPORT> viewports_;
+  std::vector<RECT> scissors_;
+  std::array<ComPtr<RenderTargetViewImpl>, SIMULTANEOUS_RENDER_TARGET_COUNT> renderTargets_;
+  ComPtr<DepthStencilViewImpl> depthStencil_;
+  ComPtr<DeviceChild> blendState_;
+  std::array<FLOAT, 4> blendFactor_{1, 1, 1, 1};
+  UINT sampleMask_ = DEFAULT_SAMPLE_MASK;
+  ComPtr<DeviceChild> depthStencilState_;
+  UINT stencilRef_ = 0;
+
+  // Recording state.
+  VkMemoryBarrier2 pendingBarrier_{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  bool rendering_ = false;
+  uint64_t renderingInstance_ = 0;
+  VkExtent2D renderArea_{1, 1};
+  VkSampler defaultSampler_ = VK_NULL_HANDLE;
+  bool renderTargetsChanged_ = true;
+  const GraphicsPipeline* boundPipeline_ = nullptr;
+  bool dynamicStateDirty_ = true;
+  bool descriptorsDirty_ = true;
+  bool vertexBuffersDirty_ = true;
+  std::vector<QueryImpl*> activeQueries_;
+  friend class QueryImpl;
+};
+
+}  // namespace rhi::vk

@@ -1,0 +1,486 @@
+// The draw and dispatch path: pipeline lookup, resource tracking, rendering
+// instances, dynamic state, push descriptors.
+#include <algorithm>
+
+#include "context.h"
+#include "pipelines.h"
+#include "queries.h"
+#include "resources.h"
+#include "shaders.h"
+#include "state_objects.h"
+#include "states/formats.h"
+#include "states/sampler.h"
+#include "views.h"
+
+namespace rhi::vk {
+
+namespace {
+
+constexpr std::array<ShaderStage, 5> kGraphicsStages = {ShaderStage::Vertex, ShaderStage::Hull, ShaderStage::Domain,
+                                                        ShaderStage::Geometry, ShaderStage::Pixel};
+
+VkPipelineStageFlags2 StageFlags(ShaderStage stage) {
+  switch (stage) {
+    case ShaderStage::Vertex: return VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT;
+    case ShaderStage::Hull: return VK_PIPELINE_STAGE_2_TESSELLATION_CONTROL_SHADER_BIT;
+    case ShaderStage::Domain: return VK_PIPELINE_STAGE_2_TESSELLATION_EVALUATION_SHADER_BIT;
+    case ShaderStage::Geometry: return VK_PIPELINE_STAGE_2_GEOMETRY_SHADER_BIT;
+    case ShaderStage::Pixel: return VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+    case ShaderStage::Compute: return VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+  }
+  return VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+}
+
+uint64_t SerialOf(DeviceChild* object) {
+  // Every backend object derives from DeviceChildImpl; the serial is what pipeline keys use.
+  if (!object) return 0;
+  if (auto* blend = dynamic_cast<BlendStateImpl*>(object)) return blend->serial();
+  if (auto* depth = dynamic_cast<DepthStencilStateImpl*>(object)) return depth->serial();
+  if (auto* raster = dynamic_cast<RasterizerStateImpl*>(object)) return raster->serial();
+  return 0;
+}
+
+uint32_t TopologyClass(PRIMITIVE_TOPOLOGY topology) {
+  if (topology >= PRIMITIVE_TOPOLOGY_1_CONTROL_POINT_PATCHLIST) return 100 + (topology - 32);
+  switch (topology) {
+    case PRIMITIVE_TOPOLOGY_POINTLIST: return VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
+    case PRIMITIVE_TOPOLOGY_LINELIST:
+    case PRIMITIVE_TOPOLOGY_LINESTRIP:
+    case PRIMITIVE_TOPOLOGY_LINELIST_ADJ:
+    case PRIMITIVE_TOPOLOGY_LINESTRIP_ADJ: return VK_PRIMITIVE_TOPOLOGY_LINE_LIST;
+    default: return VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  }
+}
+
+VkPrimitiveTopology ToVkTopology(PRIMITIVE_TOPOLOGY topology) {
+  switch (topology) {
+    case PRIMITIVE_TOPOLOGY_POINTLIST: return VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
+    case PRIMITIVE_TOPOLOGY_LINELIST: return VK_PRIMITIVE_TOPOLOGY_LINE_LIST;
+    case PRIMITIVE_TOPOLOGY_LINESTRIP: return VK_PRIMITIVE_TOPOLOGY_LINE_STRIP;
+    case PRIMITIVE_TOPOLOGY_TRIANGLELIST: return VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    case PRIMITIVE_TOPOLOGY_TRIANGLESTRIP: return VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
+    case PRIMITIVE_TOPOLOGY_LINELIST_ADJ: return VK_PRIMITIVE_TOPOLOGY_LINE_LIST_WITH_ADJACENCY;
+    case PRIMITIVE_TOPOLOGY_LINESTRIP_ADJ: return VK_PRIMITIVE_TOPOLOGY_LINE_STRIP_WITH_ADJACENCY;
+    case PRIMITIVE_TOPOLOGY_TRIANGLELIST_ADJ: return VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST_WITH_ADJACENCY;
+    case PRIMITIVE_TOPOLOGY_TRIANGLESTRIP_ADJ: return VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP_WITH_ADJACENCY;
+    default: return VK_PRIMITIVE_TOPOLOGY_PATCH_LIST;
+  }
+}
+
+bool IsStrip(PRIMITIVE_TOPOLOGY topology) {
+  return topology == PRIMITIVE_TOPOLOGY_LINESTRIP || topology == PRIMITIVE_TOPOLOGY_TRIANGLESTRIP ||
+         topology == PRIMITIVE_TOPOLOGY_LINESTRIP_ADJ || topology == PRIMITIVE_TOPOLOGY_TRIANGLESTRIP_ADJ;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------
+// Rendering instances
+
+void ContextImpl::EndRendering() {
+  if (!rendering_) return;
+  vkCmdEndRendering(Commands());
+  rendering_ = false;
+}
+
+void ContextImpl::BeginRendering() {
+  EndRendering();
+  std::array<VkRenderingAttachmentInfo, SIMULTANEOUS_RENDER_TARGET_COUNT> colors{};
+  uint32_t colorCount = 0;
+  VkExtent2D extent{0, 0};
+  uint32_t layers = 1;
+  auto grow = [&](const TextureStorage& texture, const VkImageSubresourceRange& range) {
+    VkExtent3D mip = texture.MipExtent(range.baseMipLevel);
+    extent = extent.width ? VkExtent2D{std::min(extent.width, mip.width), std::min(extent.height, mip.height)}
+                          : VkExtent2D{mip.width, mip.height};
+    layers = std::max(layers, range.layerCount);
+  };
+  for (uint32_t i = 0; i < renderTargets_.size(); ++i) {
+    VkRenderingAttachmentInfo& color = colors[i];
+    color.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
+    if (RenderTargetViewImpl* view = renderTargets_[i].Get()) {
+      color.imageView = view->imageView();
+      color.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
+      color.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+      color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+      grow(view->texture(), view->range());
+      colorCount = i + 1;
+    }
+  }
+  VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  VkRenderingAttachmentInfo stencil{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  bool hasStencil = false;
+  if (DepthStencilViewImpl* view = depthStencil_.Get()) {
+    depth.imageView = view->imageView();
+    depth.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    hasStencil = view->texture().aspects() & VK_IMAGE_ASPECT_STENCIL_BIT;
+    stencil = depth;
+    grow(view->texture(), view->range());
+  }
+  if (extent.width == 0) {
+    // No attachments (a stream-output pass): the viewport bounds what is rasterized.
+    extent = {1, 1};
+    for (const VIEWPORT& vp : viewports_)
+      extent = {std::max(extent.width, static_cast<uint32_t>(vp.TopLeftX + vp.Width)),
+                std::max(extent.height, static_cast<uint32_t>(vp.TopLeftY + vp.Height))};
+  }
+  VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  info.renderArea = {{0, 0}, extent};
+  info.layerCount = layers;
+  info.colorAttachmentCount = colorCount;
+  info.pColorAttachments = colors.data();
+  info.pDepthAttachment = depthStencil_ ? &depth : nullptr;
+  info.pStencilAttachment = hasStencil ? &stencil : nullptr;
+  vkCmdBeginRendering(Commands(), &info);
+  rendering_ = true;
+  renderTargetsChanged_ = false;
+  renderArea_ = extent;
+}
+
+// ---------------------------------------------------------------------------
+// Draw preparation
+
+const GraphicsPipeline* ContextImpl::PrepareDraw(const char* call, TrackedResource* indirect,
+                                                 const Access& indirectUse) {
+  if (!stages_[0].shader) {
+    ReportDrawError(std::string(call) + ": no vertex shader is bound; the draw is skipped");
+    return nullptr;
+  }
+  GraphicsPipelineKey key;
+  GraphicsPipelineInputs inputs;
+  for (size_t i = 0; i < kGraphicsStages.size(); ++i) {
+    const ShaderCode* code = stages_[static_cast<uint32_t>(kGraphicsStages[i])].shader.get();
+    key.shaders[i] = code ? code->serial : 0;
+    inputs.shaders[i] = code;
+  }
+  key.inputLayout = inputLayout_ ? inputLayout_->serial() : 0;
+  inputs.inputLayout = inputLayout_.Get();
+  key.blend = SerialOf(blendState_.Get());
+  key.depthStencil = SerialOf(depthStencilState_.Get());
+  key.rasterizer = SerialOf(rasterizer_.Get());
+  inputs.blend = &BlendDescOf(blendState_.Get());
+  inputs.depthStencil = &DepthStencilDescOf(depthStencilState_.Get());
+  inputs.rasterizer = &RasterizerDescOf(rasterizer_.Get());
+  for (uint32_t i = 0; i < renderTargets_.size(); ++i) {
+    if (!renderTargets_[i]) continue;
+    inputs.colorFormats[i] = renderTargets_[i]->format();
+    key.colorFormats[i] = inputs.colorFormats[i];
+    inputs.samples = renderTargets_[i]->texture().shape().samples;
+  }
+  if (depthStencil_) {
+    inputs.depthFormat = depthStencil_->texture().shape().format;
+    inputs.samples = depthStencil_->texture().shape().samples;
+  }
+  key.depthFormat = inputs.depthFormat;
+  key.samples = inputs.samples;
+  key.sampleMask = inputs.sampleMask = sampleMask_;
+  inputs.topology = topology_;
+  key.topologyClass = TopologyClass(topology_);
+
+  std::string error;
+  const GraphicsPipeline* pipeline = device_->pipelines().Graphics(key, inputs, &error);
+  if (!pipeline) {
+    ReportDrawError(std::string(call) + ": " + error + "; the draw is skipped");
+    return nullptr;
+  }
+  TrackDrawResources(*pipeline, indirect, indirectUse);
+  BindGraphicsState(*pipeline);
+  return pipeline;
+}
+
+void ContextImpl::TrackDrawResources(const GraphicsPipeline& pipeline, TrackedResource* indirect,
+                                     const Access& indirectUse) {
+  for (uint32_t slot = 0; slot < vertexBuffers_.size(); ++slot)
+    if ((pipeline.vertexSlots >> slot & 1) && vertexBuffers_[slot].buffer)
+      Use(*vertexBuffers_[slot].buffer, uses::kVertexBuffer);
+  if (indexBuffer_.buffer) Use(*indexBuffer_.buffer, uses::kIndexBuffer);
+  if (indirect) Use(*indirect, indirectUse);
+  for (const VkDescriptorSetLayoutBinding& binding : pipeline.layout->bindings) {
+    RegisterSlot reg = RegisterOfBinding(binding.binding);
+    const StageState& stage = stages_[static_cast<uint32_t>(reg.stage)];
+    const VkPipelineStageFlags2 stageFlags = StageFlags(reg.stage);
+    if (reg.registerClass == RegisterClass::ConstantBuffer && reg.slot < stage.constantBuffers.size()) {
+      if (BufferImpl* cb = stage.constantBuffers[reg.slot].Get())
+        Use(*cb, {stageFlags, VK_ACCESS_2_UNIFORM_READ_BIT, false});
+    } else if (reg.registerClass == RegisterClass::ShaderResource && reg.slot < stage.shaderResources.size()) {
+      if (ShaderResourceViewImpl* view = stage.shaderResources[reg.slot].Get())
+        Use(view->tracked(), {stageFlags, VK_ACCESS_2_SHADER_READ_BIT, false});
+    }
+  }
+  if (pipeline.streamOutput) PrepareStreamOutTargets();
+  // Attachments: writes within one rendering instance need no barrier, so
+  // they are tracked against the instance they will be drawn in.
+  const bool restart = !rendering_ || renderTargetsChanged_ || pendingBarrier_.dstStageMask != 0;
+  const uint64_t instance = restart ? renderingInstance_ + 1 : renderingInstance_;
+  for (auto& view : renderTargets_)
+    if (view) Use(view->texture(), uses::kColorAttachment, instance);
+  if (depthStencil_) Use(depthStencil_->texture(), uses::kDepthAttachment, instance);
+  FlushBarriers();
+  if (restart) {
+    ++renderingInstance_;
+    BeginRendering();
+  }
+}
+
+void ContextImpl::BindGraphicsState(const GraphicsPipeline& pipeline) {
+  VkCommandBuffer commands = Commands();
+  if (boundPipeline_ != &pipeline) {
+    vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline);
+    // Pipelines without some dynamic state invalidate it; re-emit everything.
+    dynamicStateDirty_ = descriptorsDirty_ = true;
+    boundPipeline_ = &pipeline;
+  }
+  if (dynamicStateDirty_) {
+    if (pipeline.rasterizes) SetViewportsAndScissors();
+    vkCmdSetStencilReference(commands, VK_STENCIL_FACE_FRONT_AND_BACK, stencilRef_ & 0xFF);
+    vkCmdSetBlendConstants(commands, blendFactor_.data());
+    vkCmdSetPrimitiveTopology(commands, ToVkTopology(topology_));
+    vkCmdSetPrimitiveRestartEnable(commands, IsStrip(topology_));
+    dynamicStateDirty_ = false;
+  }
+  if (vertexBuffersDirty_) {
+    BindVertexAndIndexBuffers(pipeline);
+    vertexBuffersDirty_ = false;
+  }
+  if (descriptorsDirty_ && !pipeline.layout->bindings.empty()) {
+    PushDescriptors(VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout->layout, pipeline.layout->bindings);
+  }
+  descriptorsDirty_ = false;
+}
+
+void ContextImpl::SetViewportsAndScissors() {
+  VkCommandBuffer commands = Commands();
+  std::vector<VkViewport> viewports;
+  for (const VIEWPORT& vp : viewports_) {
+    // A negative height flips Vulkan's y so clip space matches D3D11 (y up, origin top-left).
+    viewports.push_back({vp.TopLeftX, vp.TopLeftY + vp.Height, vp.Width, -vp.Height, vp.MinDepth, vp.MaxDepth});
+  }
+  if (viewports.empty()) {
+    // D3D11 rasterizes nothing without a viewport; a zero-area one does the same.
+    viewports.push_back({0, 0, 1, 0, 0, 1});
+  }
+  vkCmdSetViewportWithCount(commands, static_cast<uint32_t>(viewports.size()), viewports.data());
+  std::vector<VkRect2D> scissors;
+  const bool scissorEnable = RasterizerDescOf(rasterizer_.Get()).ScissorEnable;
+  for (size_t i = 0; i < viewports.size(); ++i) {
+    if (scissorEnable) {
+      RECT r = i < scissors_.size() ? scissors_[i] : RECT{0, 0, 0, 0};
+      int32_t x = std::max(r.left, 0), y = std::max(r.top, 0);
+      scissors.push_back({{x, y},
+                          {static_cast<uint32_t>(std::max(r.right - x, 0)),
+                           static_cast<uint32_t>(std::max(r.bottom - y, 0))}});
+    } else {
+      scissors.push_back({{0, 0}, renderArea_});
+    }
+  }
+  vkCmdSetScissorWithCount(commands, static_cast<uint32_t>(scissors.size()), scissors.data());
+}
+
+void ContextImpl::BindVertexAndIndexBuffers(const GraphicsPipeline& pipeline) {
+  VkCommandBuffer commands = Commands();
+  for (uint32_t slot = 0; slot < vertexBuffers_.size(); ++slot) {
+    if (!(pipeline.vertexSlots >> slot & 1)) continue;
+    const VertexBufferBinding& binding = vertexBuffers_[slot];
+    VkBuffer buffer = binding.buffer ? binding.buffer->handle() : VK_NULL_HANDLE;
+    VkDeviceSize offset = binding.buffer ? binding.buffer->baseOffset() + binding.offset : 0;
+    VkDeviceSize stride = binding.stride;
+    vkCmdBindVertexBuffers2(commands, slot, 1, &buffer, &offset, nullptr, &stride);
+  }
+  if (indexBuffer_.buffer) {
+    vkCmdBindIndexBuffer(commands, indexBuffer_.buffer->handle(),
+                         indexBuffer_.buffer->baseOffset() + indexBuffer_.offset,
+                         indexBuffer_.format == DXGI_FORMAT_R16_UINT ? VK_INDEX_TYPE_UINT16 : VK_INDEX_TYPE_UINT32);
+  }
+}
+
+void ContextImpl::PushDescriptors(VkPipelineBindPoint bindPoint, VkPipelineLayout layout,
+                                  const std::vector<VkDescriptorSetLayoutBinding>& bindings) {
+  std::vector<VkWriteDescriptorSet> writes(bindings.size());
+  std::vector<VkDescriptorBufferInfo> buffers(bindings.size());
+  std::vector<VkDescriptorImageInfo> images(bindings.size());
+  std::vector<VkBufferView> texelBuffers(bindings.size());
+  for (size_t i = 0; i < bindings.size(); ++i) {
+    const VkDescriptorSetLayoutBinding& binding = bindings[i];
+    RegisterSlot reg = RegisterOfBinding(binding.binding);
+    const StageState& stage = stages_[static_cast<uint32_t>(reg.stage)];
+    VkWriteDescriptorSet& write = writes[i];
+    write = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstBinding = binding.binding;
+    write.descriptorCount = 1;
+    write.descriptorType = binding.descriptorType;
+    write.pBufferInfo = &buffers[i];
+    write.pImageInfo = &images[i];
+    write.pTexelBufferView = &texelBuffers[i];
+    buffers[i] = {VK_NULL_HANDLE, 0, VK_WHOLE_SIZE};
+    images[i].imageLayout = VK_IMAGE_LAYOUT_GENERAL;
+    const ViewTarget* view = nullptr;
+    switch (reg.registerClass) {
+      case RegisterClass::ConstantBuffer:
+        if (reg.slot < stage.constantBuffers.size() && stage.constantBuffers[reg.slot]) {
+          BufferImpl& cb = *stage.constantBuffers[reg.slot];
+          buffers[i] = {cb.handle(), cb.baseOffset(), cb.desc().ByteWidth};
+        }
+        continue;
+      case RegisterClass::Sampler: {
+        DeviceChild* sampler = reg.slot < stage.samplers.size() ? stage.samplers[reg.slot].Get() : nullptr;
+        // D3D11 samples with the default sampler state where none is bound.
+        images[i].sampler = sampler ? static_cast<SamplerStateImpl*>(sampler)->handle() : defaultSampler();
+        continue;
+      }
+      case RegisterClass::ShaderResource:
+        if (reg.slot < stage.shaderResources.size()) view = stage.shaderResources[reg.slot].Get();
+        break;
+      case RegisterClass::UnorderedAccess:
+        if (reg.stage == ShaderStage::Compute && reg.slot < computeUavs_.size()) view = computeUavs_[reg.slot].Get();
+        break;
+    }
+    if (!view) continue;  // robustness2 null descriptor: reads return zero, as in D3D11
+    if (view->buffer()) {
+      buffers[i] = view->bufferRange();
+      texelBuffers[i] = view->bufferView();
+    } else {
+      images[i].imageView = view->imageView();
+    }
+  }
+  device_->gpu().vkCmdPushDescriptorSetKHR(Commands(), bindPoint, layout, 0, static_cast<uint32_t>(writes.size()),
+                                           writes.data());
+}
+
+VkSampler ContextImpl::defaultSampler() {
+  if (!defaultSampler_) {
+    // D3D11 samples unbound sampler slots with the default sampler state.
+    states::SamplerVk sampler = states::ToVulkan(SAMPLER_DESC{});
+    vkCreateSampler(device_->gpu().Device(), &sampler.info, nullptr, &defaultSampler_);
+  }
+  return defaultSampler_;
+}
+
+// ---------------------------------------------------------------------------
+// Draws
+
+void ContextImpl::Draw(UINT VertexCount, UINT StartVertexLocation) {
+  DrawInstanced(VertexCount, 1, StartVertexLocation, 0);
+}
+
+void ContextImpl::DrawIndexed(UINT IndexCount, UINT StartIndexLocation, INT BaseVertexLocation) {
+  DrawIndexedInstanced(IndexCount, 1, StartIndexLocation, BaseVertexLocation, 0);
+}
+
+void ContextImpl::DrawInstanced(UINT VertexCountPerInstance, UINT InstanceCount, UINT StartVertexLocation,
+                                UINT StartInstanceLocation) {
+  const GraphicsPipeline* pipeline = PrepareDraw("Draw");
+  if (!pipeline) return;
+  BeginStreamOut(*pipeline);
+  vkCmdDraw(Commands(), VertexCountPerInstance, InstanceCount, StartVertexLocation, StartInstanceLocation);
+  EndStreamOut(*pipeline);
+}
+
+void ContextImpl::DrawIndexedInstanced(UINT IndexCountPerInstance, UINT InstanceCount, UINT StartIndexLocation,
+                                       INT BaseVertexLocation, UINT StartInstanceLocation) {
+  if (!indexBuffer_.buffer) {
+    ReportDrawError("DrawIndexed: no index buffer is bound; the draw is skipped");
+    return;
+  }
+  const GraphicsPipeline* pipeline = PrepareDraw("DrawIndexed");
+  if (!pipeline) return;
+  BeginStreamOut(*pipeline);
+  vkCmdDrawIndexed(Commands(), IndexCountPerInstance, InstanceCount, StartIndexLocation, BaseVertexLocation,
+                   StartInstanceLocation);
+  EndStreamOut(*pipeline);
+}
+
+void ContextImpl::DrawInstancedIndirect(Buffer* pBufferForArgs, UINT AlignedByteOffsetForArgs) {
+  auto* args = static_cast<BufferImpl*>(pBufferForArgs);
+  if (!args || !(args->desc().MiscFlags & RESOURCE_MISC_DRAWINDIRECT_ARGS) || AlignedByteOffsetForArgs % 4) {
+    ReportDrawError("DrawInstancedIndirect: needs a RESOURCE_MISC_DRAWINDIRECT_ARGS buffer and a 4-byte aligned offset");
+    return;
+  }
+  const GraphicsPipeline* pipeline = PrepareDraw("DrawInstancedIndirect", args);
+  if (!pipeline) return;
+  BeginStreamOut(*pipeline);
+  vkCmdDrawIndirect(Commands(), args->handle(), args->baseOffset() + AlignedByteOffsetForArgs, 1, 0);
+  EndStreamOut(*pipeline);
+}
+
+void ContextImpl::DrawIndexedInstancedIndirect(Buffer* pBufferForArgs, UINT AlignedByteOffsetForArgs) {
+  auto* args = static_cast<BufferImpl*>(pBufferForArgs);
+  if (!args || !(args->desc().MiscFlags & RESOURCE_MISC_DRAWINDIRECT_ARGS) || AlignedByteOffsetForArgs % 4) {
+    ReportDrawError(
+        "DrawIndexedInstancedIndirect: needs a RESOURCE_MISC_DRAWINDIRECT_ARGS buffer and a 4-byte aligned offset");
+    return;
+  }
+  if (!indexBuffer_.buffer) {
+    ReportDrawError("DrawIndexedInstancedIndirect: no index buffer is bound; the draw is skipped");
+    return;
+  }
+  const GraphicsPipeline* pipeline = PrepareDraw("DrawIndexedInstancedIndirect", args);
+  if (!pipeline) return;
+  BeginStreamOut(*pipeline);
+  vkCmdDrawIndexedIndirect(Commands(), args->handle(), args->baseOffset() + AlignedByteOffsetForArgs, 1, 0);
+  EndStreamOut(*pipeline);
+}
+
+// ---------------------------------------------------------------------------
+// Compute
+
+const ComputePipeline* ContextImpl::PrepareDispatch(const char* call) {
+  const ShaderCode* shader = stages_[static_cast<uint32_t>(ShaderStage::Compute)].shader.get();
+  if (!shader) {
+    ReportDrawError(std::string(call) + ": no compute shader is bound; the dispatch is skipped");
+    return nullptr;
+  }
+  std::string error;
+  const ComputePipeline* pipeline = device_->pipelines().Compute(*shader, &error);
+  if (!pipeline) {
+    ReportDrawError(std::string(call) + ": " + error);
+    return nullptr;
+  }
+  EndRendering();
+  const StageState& stage = stages_[static_cast<uint32_t>(ShaderStage::Compute)];
+  for (const VkDescriptorSetLayoutBinding& binding : pipeline->layout->bindings) {
+    RegisterSlot reg = RegisterOfBinding(binding.binding);
+    const Access read{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_READ_BIT, false};
+    if (reg.registerClass == RegisterClass::ConstantBuffer && reg.slot < stage.constantBuffers.size()) {
+      if (BufferImpl* cb = stage.constantBuffers[reg.slot].Get())
+        Use(*cb, {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_UNIFORM_READ_BIT, false});
+    } else if (reg.registerClass == RegisterClass::ShaderResource && reg.slot < stage.shaderResources.size()) {
+      if (ShaderResourceViewImpl* view = stage.shaderResources[reg.slot].Get()) Use(view->tracked(), read);
+    } else if (reg.registerClass == RegisterClass::UnorderedAccess && reg.slot < computeUavs_.size()) {
+      if (UnorderedAccessViewImpl* view = computeUavs_[reg.slot].Get())
+        Use(view->tracked(), {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                              VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT, true});
+    }
+  }
+  return pipeline;
+}
+
+void ContextImpl::BindCompute(const ComputePipeline& pipeline) {
+  FlushBarriers();
+  vkCmdBindPipeline(Commands(), VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline);
+  if (!pipeline.layout->bindings.empty())
+    PushDescriptors(VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout->layout, pipeline.layout->bindings);
+}
+
+void ContextImpl::Dispatch(UINT ThreadGroupCountX, UINT ThreadGroupCountY, UINT ThreadGroupCountZ) {
+  const ComputePipeline* pipeline = PrepareDispatch("Dispatch");
+  if (!pipeline) return;
+  BindCompute(*pipeline);
+  vkCmdDispatch(Commands(), ThreadGroupCountX, ThreadGroupCountY, ThreadGroupCountZ);
+}
+
+void ContextImpl::DispatchIndirect(Buffer* pBufferForArgs, UINT AlignedByteOffsetForArgs) {
+  auto* args = static_cast<BufferImpl*>(pBufferForArgs);
+  if (!args || !(args->desc().MiscFlags & RESOURCE_MISC_DRAWINDIRECT_ARGS) || AlignedByteOffsetForArgs % 4) {
+    ReportDrawError("DispatchIndirect: needs a RESOURCE_MISC_DRAWINDIRECT_ARGS buffer and a 4-byte aligned offset");
+    return;
+  }
+  const ComputePipeline* pipeline = PrepareDispatch("DispatchIndirect");
+  if (!pipeline) return;
+  Use(*args, uses::kIndirectArgs);
+  BindCompute(*pipeline);
+  vkCmdDispatchIndirect(Commands(), args->handle(), args->baseOffset() + AlignedByteOffsetForArgs);
+}
+
+}  // namespace rhi::vk

@@ -1,0 +1,225 @@
+// The context's binding calls: they store state, apply D3D11's binding rules,
+// and mark what the next draw must re-emit.
+#include <algorithm>
+
+#include "context.h"
+#include "pipelines.h"
+#include "resources.h"
+#include "shaders.h"
+#include "state_objects.h"
+#include "views.h"
+
+namespace rhi::vk {
+
+ContextImpl::ContextImpl(DeviceImpl* device) : device_(device) {}
+
+ContextImpl::~ContextImpl() {
+  VkDevice vkDevice = device_->gpu().Device();
+  VkSampler sampler = defaultSampler_;
+  device_->gpu().DeferDestroy([=] { vkDestroySampler(vkDevice, sampler, nullptr); });
+}
+
+void ContextImpl::IASetInputLayout(InputLayout* pInputLayout) {
+  inputLayout_ = static_cast<InputLayoutImpl*>(pInputLayout);
+}
+
+void ContextImpl::IASetVertexBuffers(UINT StartSlot, UINT NumBuffers, Buffer* const* ppVertexBuffers,
+                                     const UINT* pStrides, const UINT* pOffsets) {
+  for (UINT i = 0; i < NumBuffers && StartSlot + i < vertexBuffers_.size(); ++i) {
+    auto* buffer = static_cast<BufferImpl*>(ppVertexBuffers ? ppVertexBuffers[i] : nullptr);
+    // A buffer bound as a stream-output target cannot be read: D3D11 binds NULL instead.
+    if (buffer && IsBoundForWriting(buffer)) buffer = nullptr;
+    vertexBuffers_[StartSlot + i] = {buffer, pStrides ? pStrides[i] : 0, pOffsets ? pOffsets[i] : 0};
+  }
+  vertexBuffersDirty_ = true;
+}
+
+void ContextImpl::IASetIndexBuffer(Buffer* pIndexBuffer, DXGI_FORMAT Format, UINT Offset) {
+  auto* buffer = static_cast<BufferImpl*>(pIndexBuffer);
+  if (buffer && Format != DXGI_FORMAT_R16_UINT && Format != DXGI_FORMAT_R32_UINT) {
+    ReportDrawError("IASetIndexBuffer: Format must be DXGI_FORMAT_R16_UINT or DXGI_FORMAT_R32_UINT");
+    buffer = nullptr;
+  }
+  if (buffer && IsBoundForWriting(buffer)) buffer = nullptr;
+  indexBuffer_ = {buffer, Format, Offset};
+  vertexBuffersDirty_ = true;
+}
+
+void ContextImpl::IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY Topology) {
+  topology_ = Topology;
+  dynamicStateDirty_ = true;
+}
+
+void ContextImpl::SetShader(ShaderStage stage, DeviceChild* object, std::shared_ptr<const ShaderCode> code) {
+  StageState& state = stages_[static_cast<uint32_t>(stage)];
+  state.shaderObject = object;
+  state.shader = std::move(code);
+  descriptorsDirty_ = true;
+}
+
+#define RHI_SET_SHADER(Prefix, Stage, Interface)                                                 \
+  void ContextImpl::Prefix##SetShader(Interface* pShader, ClassInstance* const*, UINT) {         \
+    SetShader(ShaderStage::Stage, pShader, pShader ? ShaderCodeOf(pShader) : nullptr);           \
+  }
+RHI_SET_SHADER(VS, Vertex, VertexShader)
+RHI_SET_SHADER(HS, Hull, HullShader)
+RHI_SET_SHADER(DS, Domain, DomainShader)
+RHI_SET_SHADER(GS, Geometry, GeometryShader)
+RHI_SET_SHADER(PS, Pixel, PixelShader)
+RHI_SET_SHADER(CS, Compute, ComputeShader)
+#undef RHI_SET_SHADER
+
+void ContextImpl::SetConstantBuffers(ShaderStage stage, UINT start, UINT count, Buffer* const* buffers) {
+  auto& slots = stages_[static_cast<uint32_t>(stage)].constantBuffers;
+  for (UINT i = 0; i < count && start + i < slots.size(); ++i)
+    slots[start + i] = static_cast<BufferImpl*>(buffers ? buffers[i] : nullptr);
+  descriptorsDirty_ = true;
+}
+
+void ContextImpl::SetShaderResources(ShaderStage stage, UINT start, UINT count,
+                                     ShaderResourceView* const* views) {
+  auto& slots = stages_[static_cast<uint32_t>(stage)].shaderResources;
+  for (UINT i = 0; i < count && start + i < slots.size(); ++i) {
+    auto* view = static_cast<ShaderResourceViewImpl*>(views ? views[i] : nullptr);
+    // A resource bound for writing cannot be bound for reading: D3D11 binds NULL.
+    if (view && IsBoundForWriting(view->resource())) view = nullptr;
+    slots[start + i] = view;
+  }
+  descriptorsDirty_ = true;
+}
+
+void ContextImpl::SetSamplers(ShaderStage stage, UINT start, UINT count, SamplerState* const* samplers) {
+  auto& slots = stages_[static_cast<uint32_t>(stage)].samplers;
+  for (UINT i = 0; i < count && start + i < slots.size(); ++i) slots[start + i] = samplers ? samplers[i] : nullptr;
+  descriptorsDirty_ = true;
+}
+
+void ContextImpl::CSSetUnorderedAccessViews(UINT StartSlot, UINT NumUAVs, UnorderedAccessView* const* ppUAVs,
+                                            const UINT*) {
+  for (UINT i = 0; i < NumUAVs && StartSlot + i < computeUavs_.size(); ++i) {
+    auto* view = static_cast<UnorderedAccessViewImpl*>(ppUAVs ? ppUAVs[i] : nullptr);
+    if (view) UnbindFromReads(view->resource());
+    computeUavs_[StartSlot + i] = view;
+  }
+  descriptorsDirty_ = true;
+}
+
+void ContextImpl::SOSetTargets(UINT NumBuffers, Buffer* const* ppSOTargets, const UINT* pOffsets) {
+  // D3D11: unspecified slots up to SO_BUFFER_SLOT_COUNT are unbound.
+  for (UINT i = 0; i < SO_BUFFER_SLOT_COUNT; ++i) {
+    auto* buffer = i < NumBuffers && ppSOTargets ? static_cast<BufferImpl*>(ppSOTargets[i]) : nullptr;
+    if (buffer && !(buffer->desc().BindFlags & BIND_STREAM_OUTPUT)) {
+      ReportDrawError("SOSetTargets: buffer " + std::to_string(i) + " lacks BIND_STREAM_OUTPUT; bound as NULL");
+      buffer = nullptr;
+    }
+    if (buffer) UnbindFromReads(buffer);
+    const UINT offset = buffer && pOffsets ? pOffsets[i] : 0;
+    streamOut_[i] = {buffer, offset, buffer && offset != UINT(-1)};
+  }
+}
+
+void ContextImpl::SOGetTargets(UINT NumBuffers, Buffer** ppSOTargets) {
+  for (UINT i = 0; i < NumBuffers && i < SO_BUFFER_SLOT_COUNT; ++i) {
+    BufferImpl* buffer = streamOut_[i].buffer.Get();
+    if (buffer) buffer->AddRef();
+    ppSOTargets[i] = buffer;
+  }
+}
+
+void ContextImpl::RSSetState(RasterizerState* pRasterizerState) { rasterizer_ = pRasterizerState; }
+
+void ContextImpl::RSSetViewports(UINT NumViewports, const VIEWPORT* pViewports) {
+  viewports_.assign(pViewports, pViewports + std::min(NumViewports, VIEWPORT_AND_SCISSORRECT_OBJECT_COUNT_PER_PIPELINE));
+  dynamicStateDirty_ = true;
+}
+
+void ContextImpl::RSSetScissorRects(UINT NumRects, const RECT* pRects) {
+  scissors_.assign(pRects, pRects + std::min(NumRects, VIEWPORT_AND_SCISSORRECT_OBJECT_COUNT_PER_PIPELINE));
+  dynamicStateDirty_ = true;
+}
+
+void ContextImpl::OMSetRenderTargets(UINT NumViews, RenderTargetView* const* ppRenderTargetViews,
+                                     DepthStencilView* pDepthStencilView) {
+  for (UINT i = 0; i < SIMULTANEOUS_RENDER_TARGET_COUNT; ++i) {
+    auto* view = i < NumViews && ppRenderTargetViews ? static_cast<RenderTargetViewImpl*>(ppRenderTargetViews[i])
+                                                     : nullptr;
+    if (view) UnbindFromReads(view->resource());
+    renderTargets_[i] = view;
+  }
+  auto* depth = static_cast<DepthStencilViewImpl*>(pDepthStencilView);
+  if (depth) UnbindFromReads(depth->resource());
+  depthStencil_ = depth;
+  renderTargetsChanged_ = true;
+}
+
+void ContextImpl::OMSetBlendState(BlendState* pBlendState, const FLOAT BlendFactor[4], UINT SampleMask) {
+  blendState_ = pBlendState;
+  // D3D11: a NULL factor means (1,1,1,1).
+  if (BlendFactor)
+    std::copy(BlendFactor, BlendFactor + 4, blendFactor_.begin());
+  else
+    blendFactor_ = {1, 1, 1, 1};
+  sampleMask_ = SampleMask;
+  dynamicStateDirty_ = true;
+}
+
+void ContextImpl::OMSetDepthStencilState(DepthStencilState* pDepthStencilState, UINT StencilRef) {
+  depthStencilState_ = pDepthStencilState;
+  stencilRef_ = StencilRef;
+  dynamicStateDirty_ = true;
+}
+
+bool ContextImpl::IsBoundForWriting(Resource* resource) const {
+  if (!resource) return false;
+  for (const auto& target : streamOut_)
+    if (target.buffer.Get() == resource) return true;
+  for (const auto& view : renderTargets_)
+    if (view && view->resource() == resource) return true;
+  if (depthStencil_ && depthStencil_->resource() == resource) return true;
+  for (const auto& view : computeUavs_)
+    if (view && view->resource() == resource) return true;
+  return false;
+}
+
+void ContextImpl::UnbindFromReads(Resource* resource) {
+  for (auto& binding : vertexBuffers_)
+    if (binding.buffer.Get() == resource) {
+      binding = {};
+      vertexBuffersDirty_ = true;
+    }
+  if (indexBuffer_.buffer.Get() == resource) indexBuffer_ = {};
+  for (auto& stage : stages_) {
+    for (auto& cb : stage.constantBuffers)
+      if (cb.Get() == resource) cb.Reset();
+    for (auto& view : stage.shaderResources)
+      if (view && view->resource() == resource) view.Reset();
+  }
+  descriptorsDirty_ = true;
+}
+
+void ContextImpl::ClearState() {
+  inputLayout_.Reset();
+  vertexBuffers_ = {};
+  indexBuffer_ = {};
+  topology_ = PRIMITIVE_TOPOLOGY_UNDEFINED;
+  stages_ = {};
+  computeUavs_ = {};
+  streamOut_ = {};
+  rasterizer_.Reset();
+  viewports_.clear();
+  scissors_.clear();
+  renderTargets_ = {};
+  depthStencil_.Reset();
+  blendState_.Reset();
+  blendFactor_ = {1, 1, 1, 1};
+  sampleMask_ = DEFAULT_SAMPLE_MASK;
+  depthStencilState_.Reset();
+  stencilRef_ = 0;
+  renderTargetsChanged_ = dynamicStateDirty_ = descriptorsDirty_ = vertexBuffersDirty_ = true;
+}
+
+void ContextImpl::ReportDrawError(const std::string& text) {
+  device_->gpu().Report(MESSAGE_CATEGORY_EXECUTION, MESSAGE_SEVERITY_ERROR, text);
+}
+
+}  // namespace rhi::vk

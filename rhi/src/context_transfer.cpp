@@ -1,0 +1,405 @@
+// Clears, Map/Unmap, uploads, copies, resolves and Flush.
+#include <algorithm>
+#include <cstring>
+
+#include "context.h"
+#include "queries.h"
+#include "resources.h"
+#include "states/formats.h"
+#include "views.h"
+
+namespace rhi::vk {
+
+namespace {
+
+VkImageSubresourceRange WholeRange(const TextureStorage& texture) {
+  return {texture.aspects(), 0, VK_REMAINING_MIP_LEVELS, 0, VK_REMAINING_ARRAY_LAYERS};
+}
+
+// Copies between an image and a buffer address one aspect at a time; a
+// D3D11 depth-stencil subresource copy means its depth.
+VkImageSubresourceLayers CopyLayers(const TextureStorage& texture, UINT subresource) {
+  VkImageSubresourceLayers layers = texture.Layers(subresource);
+  if (layers.aspectMask & VK_IMAGE_ASPECT_DEPTH_BIT) layers.aspectMask = VK_IMAGE_ASPECT_DEPTH_BIT;
+  return layers;
+}
+
+}  // namespace
+
+void ContextImpl::InitializeImageLayout(TextureStorage& texture) {
+  // Images live in GENERAL for their whole life; this is their only transition.
+  EndRendering();
+  VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+  barrier.srcStageMask = VK_PIPELINE_STAGE_2_NONE;
+  barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+  barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  barrier.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+  barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.image = texture.image();
+  barrier.subresourceRange = WholeRange(texture);
+  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dependency.imageMemoryBarrierCount = 1;
+  dependency.pImageMemoryBarriers = &barrier;
+  vkCmdPipelineBarrier2(Commands(), &dependency);
+}
+
+void ContextImpl::Use(TrackedResource& resource, const Access& use, uint64_t attachmentInstance) {
+  resource.Use(use, attachmentInstance, &pendingBarrier_);
+  resource.lastUseSerial = device_->gpu().RecordingSerial();
+}
+
+void ContextImpl::FlushBarriers() {
+  if (pendingBarrier_.srcStageMask == 0 && pendingBarrier_.dstStageMask == 0) return;
+  EndRendering();
+  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dependency.memoryBarrierCount = 1;
+  dependency.pMemoryBarriers = &pendingBarrier_;
+  vkCmdPipelineBarrier2(Commands(), &dependency);
+  pendingBarrier_ = {VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+}
+
+// ---------------------------------------------------------------------------
+// Uploads
+
+void ContextImpl::UploadBuffer(BufferImpl& buffer, VkDeviceSize offset, const void* data, VkDeviceSize size) {
+  HostSlice staging = device_->hostSlices().Allocate(size, 16);
+  std::memcpy(staging.data, data, size);
+  EndRendering();
+  Use(buffer, uses::kTransferWrite);
+  FlushBarriers();
+  VkBufferCopy region{staging.offset, offset, size};
+  vkCmdCopyBuffer(Commands(), staging.buffer, buffer.handle(), 1, &region);
+  device_->hostSlices().Release(staging);
+}
+
+void ContextImpl::UploadTexture(TextureStorage& texture, UINT subresource, const BOX* box, const void* data,
+                                UINT rowPitch, UINT depthPitch) {
+  const UINT bytesPerElement = states::GetFormatInfo(texture.shape().format)->bytesPerElement;
+  VkExtent3D full = texture.MipExtent(subresource % texture.shape().mipLevels);
+  VkOffset3D origin{0, 0, 0};
+  VkExtent3D extent = full;
+  if (box) {
+    origin = {static_cast<int32_t>(box->left), static_cast<int32_t>(box->top), 0};
+    extent = {box->right - box->left, box->bottom - box->top, 1};
+  }
+  const VkDeviceSize tightRow = VkDeviceSize(extent.width) * bytesPerElement;
+  if (texture.isStaging()) {
+    uint8_t* dst = texture.stagingData() + texture.SubresourceOffset(subresource);
+    const UINT dstRow = texture.RowPitch(subresource);
+    for (UINT y = 0; y < extent.height; ++y)
+      std::memcpy(dst + (origin.y + y) * dstRow + origin.x * bytesPerElement,
+                  static_cast<const uint8_t*>(data) + VkDeviceSize(y) * rowPitch, tightRow);
+    return;
+  }
+  (void)depthPitch;
+  HostSlice staging = device_->hostSlices().Allocate(tightRow * extent.height, 16);
+  for (UINT y = 0; y < extent.height; ++y)
+    std::memcpy(staging.data + y * tightRow, static_cast<const uint8_t*>(data) + VkDeviceSize(y) * rowPitch, tightRow);
+  EndRendering();
+  Use(texture, uses::kTransferWrite);
+  FlushBarriers();
+  VkBufferImageCopy region{};
+  region.bufferOffset = staging.offset;
+  region.imageSubresource = CopyLayers(texture, subresource);
+  region.imageOffset = origin;
+  region.imageExtent = extent;
+  vkCmdCopyBufferToImage(Commands(), staging.buffer, texture.image(), VK_IMAGE_LAYOUT_GENERAL, 1, &region);
+  device_->hostSlices().Release(staging);
+}
+
+void ContextImpl::UpdateSubresource(Resource* pDstResource, UINT DstSubresource, const BOX* pDstBox,
+                                    const void* pSrcData, UINT SrcRowPitch, UINT SrcDepthPitch) {
+  if (BufferImpl* buffer = AsBuffer(pDstResource)) {
+    if (buffer->desc().Usage != USAGE_DEFAULT) {
+      ReportDrawError("UpdateSubresource: only USAGE_DEFAULT resources can be updated");
+      return;
+    }
+    UINT begin = pDstBox ? pDstBox->left : 0;
+    UINT end = pDstBox ? pDstBox->right : buffer->desc().ByteWidth;
+    if (begin >= end || end > buffer->desc().ByteWidth) return;  // D3D11: an empty or outside box does nothing
+    UploadBuffer(*buffer, begin, pSrcData, end - begin);
+    return;
+  }
+  TextureStorage* texture = AsTexture(pDstResource);
+  if (!texture || texture->shape().usage != USAGE_DEFAULT || DstSubresource >= texture->subresourceCount()) {
+    ReportDrawError("UpdateSubresource: the destination must be a USAGE_DEFAULT resource and a valid subresource");
+    return;
+  }
+  UploadTexture(*texture, DstSubresource, pDstBox, pSrcData, SrcRowPitch, SrcDepthPitch);
+}
+
+// ---------------------------------------------------------------------------
+// Clears
+
+void ContextImpl::ClearRenderTargetView(RenderTargetView* pRenderTargetView, const FLOAT ColorRGBA[4]) {
+  auto* view = static_cast<RenderTargetViewImpl*>(pRenderTargetView);
+  TextureStorage& texture = view->texture();
+  const auto* format = states::GetFormatInfo(view->format());
+  VkClearColorValue color{};
+  for (int i = 0; i < 4; ++i) {
+    color.float32[i] = ColorRGBA[i];
+    if (format->kind == states::ComponentKind::Uint) color.uint32[i] = static_cast<uint32_t>(ColorRGBA[i]);
+    if (format->kind == states::ComponentKind::Sint) color.int32[i] = static_cast<int32_t>(ColorRGBA[i]);
+  }
+  // Formats without alpha (B8G8R8X8) keep alpha at 1 so that it reads as 1.
+  if (format->alphaIsOne) color.float32[3] = 1.0f;
+  EndRendering();
+  Use(texture, uses::kTransferWrite);
+  FlushBarriers();
+  VkImageSubresourceRange range = view->range();
+  vkCmdClearColorImage(Commands(), texture.image(), VK_IMAGE_LAYOUT_GENERAL, &color, 1, &range);
+}
+
+void ContextImpl::ClearDepthStencilView(DepthStencilView* pDepthStencilView, UINT ClearFlags, FLOAT Depth,
+                                        UINT8 Stencil) {
+  auto* view = static_cast<DepthStencilViewImpl*>(pDepthStencilView);
+  TextureStorage& texture = view->texture();
+  VkImageSubresourceRange range = view->range();
+  range.aspectMask = 0;
+  if (ClearFlags & CLEAR_DEPTH) range.aspectMask |= VK_IMAGE_ASPECT_DEPTH_BIT;
+  if ((ClearFlags & CLEAR_STENCIL) && (texture.aspects() & VK_IMAGE_ASPECT_STENCIL_BIT))
+    range.aspectMask |= VK_IMAGE_ASPECT_STENCIL_BIT;
+  if (!range.aspectMask) return;
+  EndRendering();
+  Use(texture, uses::kTransferWrite);
+  FlushBarriers();
+  VkClearDepthStencilValue value{Depth, Stencil};
+  vkCmdClearDepthStencilImage(Commands(), texture.image(), VK_IMAGE_LAYOUT_GENERAL, &value, 1, &range);
+}
+
+void ContextImpl::ClearUnorderedAccessViewUint(UnorderedAccessView* pUnorderedAccessView, const UINT Values[4]) {
+  auto* view = static_cast<UnorderedAccessViewImpl*>(pUnorderedAccessView);
+  EndRendering();
+  if (BufferImpl* buffer = view->buffer()) {
+    Use(*buffer, uses::kTransferWrite);
+    FlushBarriers();
+    // Raw, structured and 32-bit typed views clear with the first value, as D3D11 does.
+    VkDescriptorBufferInfo range = view->bufferRange();
+    vkCmdFillBuffer(Commands(), range.buffer, range.offset, range.range, Values[0]);
+    return;
+  }
+  TextureStorage& texture = *view->texture();
+  Use(texture, uses::kTransferWrite);
+  FlushBarriers();
+  VkClearColorValue color{};
+  std::memcpy(color.uint32, Values, sizeof color.uint32);
+  VkImageSubresourceRange range = view->range();
+  vkCmdClearColorImage(Commands(), texture.image(), VK_IMAGE_LAYOUT_GENERAL, &color, 1, &range);
+}
+
+void ContextImpl::ClearUnorderedAccessViewFloat(UnorderedAccessView* pUnorderedAccessView, const FLOAT Values[4]) {
+  auto* view = static_cast<UnorderedAccessViewImpl*>(pUnorderedAccessView);
+  if (view->buffer()) {
+    UINT bits[4];
+    std::memcpy(bits, Values, sizeof bits);
+    ClearUnorderedAccessViewUint(pUnorderedAccessView, bits);
+    return;
+  }
+  TextureStorage& texture = *view->texture();
+  EndRendering();
+  Use(texture, uses::kTransferWrite);
+  FlushBarriers();
+  VkClearColorValue color{};
+  std::memcpy(color.float32, Values, sizeof color.float32);
+  VkImageSubresourceRange range = view->range();
+  vkCmdClearColorImage(Commands(), texture.image(), VK_IMAGE_LAYOUT_GENERAL, &color, 1, &range);
+}
+
+// ---------------------------------------------------------------------------
+// Map / Unmap
+
+HRESULT ContextImpl::Map(Resource* pResource, UINT Subresource, MAP MapType, UINT MapFlags,
+                         MAPPED_SUBRESOURCE* pMappedResource) {
+  Gpu& gpu = device_->gpu();
+  if (BufferImpl* buffer = AsBuffer(pResource); buffer && buffer->isDynamic()) {
+    if (MapType == MAP_WRITE_DISCARD) {
+      buffer->Rename();
+      // The bound storage moved: descriptors and vertex buffers must be re-emitted.
+      descriptorsDirty_ = vertexBuffersDirty_ = true;
+    } else if (MapType != MAP_WRITE_NO_OVERWRITE) {
+      return gpu.Refuse("Map: a USAGE_DYNAMIC buffer maps with WRITE_DISCARD or WRITE_NO_OVERWRITE only");
+    }
+    *pMappedResource = {buffer->hostData(), buffer->desc().ByteWidth, buffer->desc().ByteWidth};
+    return S_OK;
+  }
+  TrackedResource* tracked = nullptr;
+  MAPPED_SUBRESOURCE mapped{};
+  if (BufferImpl* buffer = AsBuffer(pResource); buffer && buffer->isStaging()) {
+    tracked = buffer;
+    mapped = {buffer->hostData(), buffer->desc().ByteWidth, buffer->desc().ByteWidth};
+  } else if (TextureStorage* texture = AsTexture(pResource);
+             texture && texture->isStaging() && Subresource < texture->subresourceCount()) {
+    tracked = texture;
+    mapped = {texture->stagingData() + texture->SubresourceOffset(Subresource), texture->RowPitch(Subresource),
+              texture->DepthPitch(Subresource)};
+  } else {
+    return gpu.Refuse("Map: only USAGE_DYNAMIC and USAGE_STAGING resources can be mapped (valid subresource)");
+  }
+  if (MapType == MAP_WRITE_DISCARD || MapType == MAP_WRITE_NO_OVERWRITE)
+    return gpu.Refuse("Map: WRITE_DISCARD and WRITE_NO_OVERWRITE are for USAGE_DYNAMIC resources");
+  // The CPU must see what the GPU wrote, and must not overwrite what it still reads.
+  if (!gpu.IsComplete(tracked->lastUseSerial)) {
+    if (MapFlags & MAP_FLAG_DO_NOT_WAIT) {
+      if (tracked->lastUseSerial == gpu.RecordingSerial()) Flush();
+      return DXGI_ERROR_WAS_STILL_DRAWING;
+    }
+    if (tracked->lastUseSerial == gpu.RecordingSerial()) Flush();
+    gpu.WaitFor(tracked->lastUseSerial);
+  }
+  *pMappedResource = mapped;
+  return S_OK;
+}
+
+void ContextImpl::Unmap(Resource*, UINT) {
+  // Host memory is coherent: nothing to flush.
+}
+
+// ---------------------------------------------------------------------------
+// Copies
+
+namespace {
+
+struct CopyRegion {
+  VkOffset3D srcOffset{0, 0, 0};
+  VkOffset3D dstOffset{0, 0, 0};
+  VkExtent3D extent{};
+};
+
+}  // namespace
+
+void ContextImpl::CopyResource(Resource* pDstResource, Resource* pSrcResource) {
+  if (BufferImpl* dst = AsBuffer(pDstResource)) {
+    BufferImpl* src = AsBuffer(pSrcResource);
+    if (!src || src->desc().ByteWidth != dst->desc().ByteWidth) {
+      ReportDrawError("CopyResource: source and destination must be buffers of the same size");
+      return;
+    }
+    CopySubresourceRegion(pDstResource, 0, 0, 0, 0, pSrcResource, 0, nullptr);
+    return;
+  }
+  TextureStorage* dst = AsTexture(pDstResource);
+  TextureStorage* src = AsTexture(pSrcResource);
+  if (!src || src->subresourceCount() != dst->subresourceCount() || src->shape().width != dst->shape().width ||
+      src->shape().height != dst->shape().height) {
+    ReportDrawError("CopyResource: source and destination must be textures of the same shape");
+    return;
+  }
+  for (UINT sub = 0; sub < dst->subresourceCount(); ++sub)
+    CopySubresourceRegion(pDstResource, sub, 0, 0, 0, pSrcResource, sub, nullptr);
+}
+
+void ContextImpl::CopySubresourceRegion(Resource* pDstResource, UINT DstSubresource, UINT DstX, UINT DstY, UINT,
+                                        Resource* pSrcResource, UINT SrcSubresource, const BOX* pSrcBox) {
+  EndRendering();
+  if (BufferImpl* dst = AsBuffer(pDstResource)) {
+    BufferImpl* src = AsBuffer(pSrcResource);
+    if (!src || dst->isDynamic()) {
+      ReportDrawError("CopySubresourceRegion: buffer copies need a buffer source and a non-dynamic destination");
+      return;
+    }
+    UINT begin = pSrcBox ? pSrcBox->left : 0;
+    UINT end = pSrcBox ? pSrcBox->right : src->desc().ByteWidth;
+    if (begin >= end || end > src->desc().ByteWidth || DstX + (end - begin) > dst->desc().ByteWidth) return;
+    Use(*src, uses::kTransferRead);
+    Use(*dst, uses::kTransferWrite);
+    FlushBarriers();
+    VkBufferCopy region{src->baseOffset() + begin, DstX, end - begin};
+    vkCmdCopyBuffer(Commands(), src->handle(), dst->handle(), 1, &region);
+    if (dst->isStaging()) {
+      Use(*dst, uses::kHostRead);
+      FlushBarriers();
+    }
+    return;
+  }
+  TextureStorage* dst = AsTexture(pDstResource);
+  TextureStorage* src = AsTexture(pSrcResource);
+  if (!dst || !src || DstSubresource >= dst->subresourceCount() || SrcSubresource >= src->subresourceCount()) {
+    ReportDrawError("CopySubresourceRegion: invalid texture or subresource");
+    return;
+  }
+  CopyRegion region;
+  region.extent = src->MipExtent(SrcSubresource % src->shape().mipLevels);
+  if (pSrcBox) {
+    region.srcOffset = {static_cast<int32_t>(pSrcBox->left), static_cast<int32_t>(pSrcBox->top), 0};
+    region.extent = {pSrcBox->right - pSrcBox->left, pSrcBox->bottom - pSrcBox->top, 1};
+  }
+  region.dstOffset = {static_cast<int32_t>(DstX), static_cast<int32_t>(DstY), 0};
+  Use(*src, uses::kTransferRead);
+  Use(*dst, uses::kTransferWrite);
+  FlushBarriers();
+  VkCommandBuffer commands = Commands();
+  const UINT bpe = states::GetFormatInfo(src->shape().format)->bytesPerElement;
+  auto bufferCopy = [&](const TextureStorage& staging, UINT sub, VkOffset3D imageOffset, VkOffset3D bufferOffset,
+                        const TextureStorage& image, UINT imageSub) {
+    VkBufferImageCopy copy{};
+    copy.bufferOffset = staging.SubresourceOffset(sub) + VkDeviceSize(bufferOffset.y) * staging.RowPitch(sub) +
+                        VkDeviceSize(bufferOffset.x) * bpe;
+    copy.bufferRowLength = staging.RowPitch(sub) / bpe;
+    copy.imageSubresource = CopyLayers(image, imageSub);
+    copy.imageOffset = imageOffset;
+    copy.imageExtent = region.extent;
+    return copy;
+  };
+  if (src->isStaging() && dst->isStaging()) {
+    for (UINT y = 0; y < region.extent.height; ++y) {
+      VkBufferCopy row{src->SubresourceOffset(SrcSubresource) + (region.srcOffset.y + y) * src->RowPitch(SrcSubresource) +
+                           region.srcOffset.x * bpe,
+                       dst->SubresourceOffset(DstSubresource) + (region.dstOffset.y + y) * dst->RowPitch(DstSubresource) +
+                           region.dstOffset.x * bpe,
+                       VkDeviceSize(region.extent.width) * bpe};
+      vkCmdCopyBuffer(commands, src->stagingBuffer(), dst->stagingBuffer(), 1, &row);
+    }
+  } else if (dst->isStaging()) {
+    VkBufferImageCopy copy = bufferCopy(*dst, DstSubresource, region.srcOffset, region.dstOffset, *src, SrcSubresource);
+    vkCmdCopyImageToBuffer(commands, src->image(), VK_IMAGE_LAYOUT_GENERAL, dst->stagingBuffer(), 1, &copy);
+  } else if (src->isStaging()) {
+    VkBufferImageCopy copy = bufferCopy(*src, SrcSubresource, region.dstOffset, region.srcOffset, *dst, DstSubresource);
+    vkCmdCopyBufferToImage(commands, src->stagingBuffer(), dst->image(), VK_IMAGE_LAYOUT_GENERAL, 1, &copy);
+  } else {
+    VkImageCopy copy{CopyLayers(*src, SrcSubresource), region.srcOffset, CopyLayers(*dst, DstSubresource),
+                     region.dstOffset, region.extent};
+    copy.srcSubresource.aspectMask = src->aspects();
+    copy.dstSubresource.aspectMask = dst->aspects();
+    vkCmdCopyImage(commands, src->image(), VK_IMAGE_LAYOUT_GENERAL, dst->image(), VK_IMAGE_LAYOUT_GENERAL, 1, &copy);
+  }
+  if (dst->isStaging()) {
+    Use(*dst, uses::kHostRead);
+    FlushBarriers();
+  }
+}
+
+void ContextImpl::ResolveSubresource(Resource* pDstResource, UINT DstSubresource, Resource* pSrcResource,
+                                     UINT SrcSubresource, DXGI_FORMAT) {
+  TextureStorage* dst = AsTexture(pDstResource);
+  TextureStorage* src = AsTexture(pSrcResource);
+  if (!dst || !src || src->shape().samples < 2 || dst->shape().samples != 1) {
+    ReportDrawError("ResolveSubresource: needs a multisampled source and a single-sampled destination");
+    return;
+  }
+  EndRendering();
+  Use(*src, uses::kTransferRead);
+  Use(*dst, uses::kTransferWrite);
+  FlushBarriers();
+  VkImageResolve region{src->Layers(SrcSubresource), {0, 0, 0}, dst->Layers(DstSubresource), {0, 0, 0},
+                        dst->MipExtent(DstSubresource % dst->shape().mipLevels)};
+  vkCmdResolveImage(Commands(), src->image(), VK_IMAGE_LAYOUT_GENERAL, dst->image(), VK_IMAGE_LAYOUT_GENERAL, 1,
+                    &region);
+}
+
+// ---------------------------------------------------------------------------
+// Submission
+
+void ContextImpl::Flush() {
+  Gpu& gpu = device_->gpu();
+  if (!gpu.HasPendingCommands()) return;
+  EndRendering();
+  for (QueryImpl* query : activeQueries_) query->EndSegment(Commands());
+  gpu.Submit();
+  // A new command buffer starts with no state bound.
+  boundPipeline_ = nullptr;
+  dynamicStateDirty_ = descriptorsDirty_ = vertexBuffersDirty_ = true;
+  for (QueryImpl* query : activeQueries_) query->BeginSegment(Commands());
+}
+
+}  // namespace rhi::vk

@@ -1,0 +1,192 @@
+#include "device.h"
+
+#include <cstring>
+
+#include "context.h"
+#include "pipelines.h"
+#include "queries.h"
+#include "resources.h"
+#include "shaders.h"
+#include "state_objects.h"
+#include "states/blend.h"
+#include "states/depth_stencil.h"
+#include "states/rasterizer.h"
+#include "states/sampler.h"
+#include "views.h"
+
+namespace rhi {
+
+HRESULT CreateDevice(const DEVICE_OPTIONS* pOptions, Device** ppDevice, DeviceContext** ppImmediateContext) {
+  DEVICE_OPTIONS defaults;
+  vk::DeviceImpl* device = nullptr;
+  HRESULT hr = vk::DeviceImpl::Create(pOptions ? *pOptions : defaults, &device);
+  if (FAILED(hr)) return hr;
+  if (ppImmediateContext) device->GetImmediateContext(ppImmediateContext);
+  if (ppDevice)
+    *ppDevice = device;
+  else
+    device->Release();
+  return S_OK;
+}
+
+}  // namespace rhi
+
+namespace rhi::vk {
+
+HRESULT DeviceImpl::Create(const DEVICE_OPTIONS& options, DeviceImpl** out) {
+  ComPtr<DeviceImpl> device;
+  device.Attach(new DeviceImpl());
+  if (HRESULT hr = Gpu::Create(options, &device->gpu_); FAILED(hr)) return hr;
+  device->hostSlices_ = std::make_unique<HostSliceAllocator>(*device->gpu_);
+  device->pipelines_ = std::make_unique<PipelineCache>(*device->gpu_);
+  device->context_ = std::make_unique<ContextImpl>(device.Get());
+  *out = device.Detach();
+  return S_OK;
+}
+
+DeviceImpl::~DeviceImpl() {
+  // Bound objects release their references to this device while the context
+  // is cleared, so clear it before anything else goes.
+  context_->ClearState();
+  context_->Flush();
+  gpu_->WaitIdle();
+  context_.reset();
+  pipelines_.reset();
+  gpu_->WaitIdle();
+  hostSlices_.reset();
+  gpu_.reset();
+}
+
+void DeviceImpl::GetImmediateContext(DeviceContext** ppImmediateContext) {
+  context_->AddRef();
+  *ppImmediateContext = context_.get();
+}
+
+// ---------------------------------------------------------------------------
+// Resources and views
+
+HRESULT DeviceImpl::CreateBuffer(const BUFFER_DESC* pDesc, const SUBRESOURCE_DATA* pInitialData, Buffer** ppBuffer) {
+  if (!pDesc) return gpu_->Refuse("CreateBuffer: pDesc is NULL");
+  BufferImpl* buffer = nullptr;
+  HRESULT hr = BufferImpl::Create(this, *pDesc, pInitialData, &buffer);
+  if (SUCCEEDED(hr)) *ppBuffer = buffer;
+  return hr;
+}
+
+template <class Impl, class Desc>
+static HRESULT CreateTexture(DeviceImpl* device, const Desc& desc, const TextureShape& shape,
+                             const SUBRESOURCE_DATA* initialData, Impl** out) {
+  ComPtr<Impl> texture;
+  texture.Attach(new Impl(device, desc));
+  if (HRESULT hr = texture->Initialize(*device, shape, initialData); FAILED(hr)) return hr;
+  *out = texture.Detach();
+  return S_OK;
+}
+
+HRESULT DeviceImpl::CreateTexture1D(const TEXTURE1D_DESC* pDesc, const SUBRESOURCE_DATA* pInitialData,
+                                    Texture1D** ppTexture1D) {
+  if (!pDesc) return gpu_->Refuse("CreateTexture1D: pDesc is NULL");
+  TextureShape shape{RESOURCE_DIMENSION_TEXTURE1D, pDesc->Width, 1, pDesc->MipLevels, pDesc->ArraySize, 1,
+                     pDesc->Format, pDesc->Usage, pDesc->BindFlags, pDesc->CPUAccessFlags, pDesc->MiscFlags};
+  Texture1DImpl* texture = nullptr;
+  HRESULT hr = CreateTexture(this, *pDesc, shape, pInitialData, &texture);
+  if (SUCCEEDED(hr)) *ppTexture1D = texture;
+  return hr;
+}
+
+HRESULT DeviceImpl::CreateTexture2D(const TEXTURE2D_DESC* pDesc, const SUBRESOURCE_DATA* pInitialData,
+                                    Texture2D** ppTexture2D) {
+  if (!pDesc) return gpu_->Refuse("CreateTexture2D: pDesc is NULL");
+  TextureShape shape{RESOURCE_DIMENSION_TEXTURE2D, pDesc->Width,          pDesc->Height,
+                     pDesc->MipLevels,             pDesc->ArraySize,      pDesc->SampleDesc.Count,
+                     pDesc->Format,                pDesc->Usage,          pDesc->BindFlags,
+                     pDesc->CPUAccessFlags,        pDesc->MiscFlags};
+  Texture2DImpl* texture = nullptr;
+  HRESULT hr = CreateTexture(this, *pDesc, shape, pInitialData, &texture);
+  if (SUCCEEDED(hr)) *ppTexture2D = texture;
+  return hr;
+}
+
+HRESULT DeviceImpl::CreateShaderResourceView(Resource* pResource, const SHADER_RESOURCE_VIEW_DESC* pDesc,
+                                             ShaderResourceView** ppSRView) {
+  return ShaderResourceViewImpl::Create(this, pResource, pDesc, ppSRView);
+}
+
+HRESULT DeviceImpl::CreateUnorderedAccessView(Resource* pResource, const UNORDERED_ACCESS_VIEW_DESC* pDesc,
+                                              UnorderedAccessView** ppUAView) {
+  return UnorderedAccessViewImpl::Create(this, pResource, pDesc, ppUAView);
+}
+
+HRESULT DeviceImpl::CreateRenderTargetView(Resource* pResource, const RENDER_TARGET_VIEW_DESC* pDesc,
+                                           RenderTargetView** ppRTView) {
+  return RenderTargetViewImpl::Create(this, pResource, pDesc, ppRTView);
+}
+
+HRESULT DeviceImpl::CreateDepthStencilView(Resource* pResource, const DEPTH_STENCIL_VIEW_DESC* pDesc,
+                                           DepthStencilView** ppDepthStencilView) {
+  return DepthStencilViewImpl::Create(this, pResource, pDesc, ppDepthStencilView);
+}
+
+// ---------------------------------------------------------------------------
+// State objects
+
+template <class Impl, class Interface, class Desc>
+HRESULT DeviceImpl::CreateDeduplicated(const Desc* desc, Interface** out) {
+  if (!desc) return gpu_->Refuse("Create*State: the description is NULL");
+  if (std::string reason = states::Validate(*desc); !reason.empty()) return gpu_->Refuse(reason);
+  const uint64_t hash = states::RawHash(*desc);
+  auto [first, last] = stateCache_.equal_range(hash);
+  for (auto it = first; it != last; ++it) {
+    auto* existing = static_cast<Impl*>(it->second);
+    if (states::RawEqual(existing->desc(), *desc)) {
+      existing->AddRef();
+      *out = existing;
+      return S_OK;
+    }
+  }
+  ComPtr<Impl> created;
+  created.Attach(new Impl(this, *desc));
+  if constexpr (std::is_same_v<Impl, SamplerStateImpl>) {
+    if (HRESULT hr = created->Initialize(); FAILED(hr)) return hr;
+  }
+  stateCache_.emplace(hash, created.Get());
+  *out = created.Detach();
+  return S_OK;
+}
+
+void DeviceImpl::ForgetState(DeviceChild* object) {
+  for (auto it = stateCache_.begin(); it != stateCache_.end(); ++it) {
+    if (it->second == object) {
+      stateCache_.erase(it);
+      return;
+    }
+  }
+}
+
+HRESULT DeviceImpl::CreateBlendState(const BLEND_DESC* pBlendStateDesc, BlendState** ppBlendState) {
+  return CreateDeduplicated<BlendStateImpl>(pBlendStateDesc, ppBlendState);
+}
+
+HRESULT DeviceImpl::CreateDepthStencilState(const DEPTH_STENCIL_DESC* pDepthStencilDesc,
+                                            DepthStencilState** ppDepthStencilState) {
+  return CreateDeduplicated<DepthStencilStateImpl>(pDepthStencilDesc, ppDepthStencilState);
+}
+
+HRESULT DeviceImpl::CreateRasterizerState(const RASTERIZER_DESC* pRasterizerDesc,
+                                          RasterizerState** ppRasterizerState) {
+  return CreateDeduplicated<RasterizerStateImpl>(pRasterizerDesc, ppRasterizerState);
+}
+
+HRESULT DeviceImpl::CreateSamplerState(const SAMPLER_DESC* pSamplerDesc, SamplerState** ppSamplerState) {
+  return CreateDeduplicated<SamplerStateImpl>(pSamplerDesc, ppSamplerState);
+}
+
+HRESULT DeviceImpl::CreateQuery(const QUERY_DESC* pQueryDesc, Query** ppQuery) {
+  if (!pQueryDesc) return gpu_->Refuse("CreateQuery: pQueryDesc is NULL");
+  QueryImpl* query = nullptr;
+  HRESULT hr = QueryImpl::Create(this, *pQueryDesc, &query);
+  if (SUCCEEDED(hr)) *ppQuery = query;
+  return hr;
+}
+
+}  // namespace rhi::vk

@@ -1,0 +1,104 @@
+// Graphics and compute pipelines, built lazily from the bound D3D11 state and
+// cached by a key of that state. State objects and shaders enter the key by
+// serial (deduplication makes equal descs the same object); everything that
+// Vulkan can take as dynamic state stays out of it.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "gpu.h"
+#include "rhi/shader_bindings.h"
+
+namespace rhi::vk {
+
+class ShaderCode;
+class InputLayoutImpl;
+struct StreamOutput;
+
+struct GraphicsPipelineKey {
+  std::array<uint64_t, 5> shaders{};  // VS, HS, DS, GS, PS serials (0: none)
+  uint64_t inputLayout = 0;
+  uint64_t blend = 0, depthStencil = 0, rasterizer = 0;  // serials, 0: D3D11 default
+  std::array<uint32_t, SIMULTANEOUS_RENDER_TARGET_COUNT> colorFormats{};  // DXGI formats
+  uint32_t depthFormat = 0;
+  uint32_t samples = 1;
+  uint32_t sampleMask = 0;
+  uint32_t topologyClass = 0;  // VkPrimitiveTopology class representative, or patch control points + 100
+  bool operator==(const GraphicsPipelineKey&) const = default;
+};
+
+struct GraphicsPipelineKeyHash {
+  size_t operator()(const GraphicsPipelineKey& key) const;
+};
+
+struct PipelineLayout {
+  VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  std::vector<VkDescriptorSetLayoutBinding> bindings;
+};
+
+struct GraphicsPipeline {
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  const PipelineLayout* layout = nullptr;
+  uint32_t vertexSlots = 0;  // bitmask of the input slots the input layout reads
+  std::shared_ptr<const StreamOutput> streamOutput;
+  bool rasterizes = true;
+};
+
+struct ComputePipeline {
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  const PipelineLayout* layout = nullptr;
+};
+
+// Everything a graphics pipeline is built from.
+struct GraphicsPipelineInputs {
+  std::array<const ShaderCode*, 5> shaders{};  // VS, HS, DS, GS, PS
+  const InputLayoutImpl* inputLayout = nullptr;
+  const BLEND_DESC* blend = nullptr;
+  const DEPTH_STENCIL_DESC* depthStencil = nullptr;
+  const RASTERIZER_DESC* rasterizer = nullptr;
+  std::array<DXGI_FORMAT, SIMULTANEOUS_RENDER_TARGET_COUNT> colorFormats{};
+  DXGI_FORMAT depthFormat = DXGI_FORMAT_UNKNOWN;
+  uint32_t samples = 1;
+  uint32_t sampleMask = DEFAULT_SAMPLE_MASK;
+  PRIMITIVE_TOPOLOGY topology = PRIMITIVE_TOPOLOGY_UNDEFINED;
+};
+
+class PipelineCache {
+ public:
+  explicit PipelineCache(Gpu& gpu);
+  ~PipelineCache();
+
+  // Null with `error` set when the state cannot form a pipeline (a D3D11 draw-time error).
+  const GraphicsPipeline* Graphics(const GraphicsPipelineKey& key, const GraphicsPipelineInputs& inputs,
+                                   std::string* error);
+  const ComputePipeline* Compute(const ShaderCode& shader, std::string* error);
+  // The backend's own compute step turning a stream-output counter into draw arguments.
+  const ComputePipeline& DrawAutoArgs();
+
+ private:
+  const PipelineLayout* Layout(const std::vector<VkDescriptorSetLayoutBinding>& bindings,
+                               uint32_t pushConstantBytes = 0);
+  std::unique_ptr<GraphicsPipeline> BuildGraphics(const GraphicsPipelineInputs& inputs, std::string* error);
+  VkShaderModule CreateModule(const std::vector<uint32_t>& words);
+
+  Gpu& gpu_;
+  std::unordered_map<GraphicsPipelineKey, std::unique_ptr<GraphicsPipeline>, GraphicsPipelineKeyHash> graphics_;
+  std::unordered_map<uint64_t, std::unique_ptr<ComputePipeline>> compute_;
+  std::unordered_map<std::string, std::unique_ptr<PipelineLayout>> layouts_;
+  std::unique_ptr<ComputePipeline> drawAutoArgs_;
+};
+
+// Which D3D11 register a descriptor binding stands for (inverse of BindingFor).
+struct RegisterSlot {
+  ShaderStage stage;
+  RegisterClass registerClass;
+  uint32_t slot;
+};
+RegisterSlot RegisterOfBinding(uint32_t binding);
+
+}  // namespace rhi::vk

@@ -1,0 +1,122 @@
+// Buffers and textures.
+#pragma once
+
+#include <vector>
+
+#include "device.h"
+#include "resource_tracking.h"
+
+namespace rhi::vk {
+
+// The counter behind D3D11's "append where the last stream-out stopped" and
+// DrawAuto: bytes 0..3 hold the Vulkan transform feedback counter (the byte
+// offset the last stream-out reached), bytes 16..31 the VkDrawIndirectCommand
+// that DrawAuto's compute step writes from it.
+struct StreamOutCounter : TrackedResource {
+  static constexpr VkDeviceSize kCounterOffset = 0;
+  static constexpr VkDeviceSize kDrawArgsOffset = 16;
+  static constexpr VkDeviceSize kSize = 32;
+  VkBuffer buffer = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  // Whether the counter holds a value; until the first stream-out it counts from 0.
+  bool valid = false;
+};
+
+class BufferImpl final : public DeviceChildImpl<Buffer>, public TrackedResource {
+ public:
+  static HRESULT Create(DeviceImpl* device, const BUFFER_DESC& desc, const SUBRESOURCE_DATA* initialData,
+                        BufferImpl** out);
+  ~BufferImpl() override;
+
+  void GetType(RESOURCE_DIMENSION* dimension) override { *dimension = RESOURCE_DIMENSION_BUFFER; }
+  void GetDesc(BUFFER_DESC* desc) override { *desc = desc_; }
+  const BUFFER_DESC& desc() const { return desc_; }
+
+  // Where the contents live now (DYNAMIC buffers move on every WRITE_DISCARD).
+  VkBuffer handle() const { return isDynamic() ? slice_.buffer : buffer_; }
+  VkDeviceSize baseOffset() const { return isDynamic() ? slice_.offset : 0; }
+  bool isDynamic() const { return desc_.Usage == USAGE_DYNAMIC; }
+  bool isStaging() const { return desc_.Usage == USAGE_STAGING; }
+  // CPU-visible contents of DYNAMIC and STAGING buffers.
+  uint8_t* hostData() const { return isDynamic() ? slice_.data : static_cast<uint8_t*>(mapped_); }
+  // WRITE_DISCARD: new storage; the GPU keeps the old until it is done with it.
+  void Rename();
+
+  StreamOutCounter& soCounter();
+
+ private:
+  BufferImpl(DeviceImpl* device, const BUFFER_DESC& desc) : DeviceChildImpl(device), desc_(desc) {}
+  HRESULT Initialize(const SUBRESOURCE_DATA* initialData);
+
+  BUFFER_DESC desc_;
+  VkBuffer buffer_ = VK_NULL_HANDLE;
+  VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  void* mapped_ = nullptr;
+  HostSlice slice_;
+  std::unique_ptr<StreamOutCounter> soCounter_;
+};
+
+// What Texture1D and Texture2D have in common.
+struct TextureShape {
+  RESOURCE_DIMENSION dimension = RESOURCE_DIMENSION_TEXTURE2D;
+  UINT width = 1, height = 1, mipLevels = 1, arraySize = 1, samples = 1;
+  DXGI_FORMAT format = DXGI_FORMAT_UNKNOWN;
+  USAGE usage = USAGE_DEFAULT;
+  UINT bindFlags = 0, cpuAccessFlags = 0, miscFlags = 0;
+};
+
+class TextureStorage : public TrackedResource {
+ public:
+  ~TextureStorage();
+  HRESULT Initialize(DeviceImpl& device, const TextureShape& shape, const SUBRESOURCE_DATA* initialData);
+
+  const TextureShape& shape() const { return shape_; }
+  VkImage image() const { return image_; }
+  VkFormat vkFormat() const { return vkFormat_; }
+  VkImageAspectFlags aspects() const { return aspects_; }
+  UINT subresourceCount() const { return shape_.mipLevels * shape_.arraySize; }
+  VkExtent3D MipExtent(UINT mip) const;
+  VkImageSubresourceLayers Layers(UINT subresource) const;
+
+  // STAGING textures live in a buffer, subresources packed one after another.
+  bool isStaging() const { return shape_.usage == USAGE_STAGING; }
+  VkBuffer stagingBuffer() const { return stagingBuffer_; }
+  VkDeviceSize SubresourceOffset(UINT subresource) const { return subresourceOffsets_[subresource]; }
+  UINT RowPitch(UINT subresource) const;
+  UINT DepthPitch(UINT subresource) const;
+  uint8_t* stagingData() const { return static_cast<uint8_t*>(mapped_); }
+
+ private:
+  HRESULT CreateImage(DeviceImpl& device);
+  HRESULT CreateStagingBuffer(DeviceImpl& device);
+
+  DeviceImpl* device_ = nullptr;
+  TextureShape shape_;
+  VkFormat vkFormat_ = VK_FORMAT_UNDEFINED;
+  VkImageAspectFlags aspects_ = 0;
+  VkImage image_ = VK_NULL_HANDLE;
+  VkBuffer stagingBuffer_ = VK_NULL_HANDLE;
+  VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  void* mapped_ = nullptr;
+  std::vector<VkDeviceSize> subresourceOffsets_;
+};
+
+template <class Interface, class Desc>
+class TextureImpl final : public DeviceChildImpl<Interface>, public TextureStorage {
+ public:
+  TextureImpl(DeviceImpl* device, const Desc& desc) : DeviceChildImpl<Interface>(device), desc_(desc) {}
+  void GetType(RESOURCE_DIMENSION* dimension) override { *dimension = shape().dimension; }
+  void GetDesc(Desc* desc) override { *desc = desc_; }
+
+ private:
+  Desc desc_;
+};
+
+using Texture1DImpl = TextureImpl<Texture1D, TEXTURE1D_DESC>;
+using Texture2DImpl = TextureImpl<Texture2D, TEXTURE2D_DESC>;
+
+// The storage behind any texture resource, or null for buffers.
+TextureStorage* AsTexture(Resource* resource);
+BufferImpl* AsBuffer(Resource* resource);
+
+}  // namespace rhi::vk

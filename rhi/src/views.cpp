@@ -1,0 +1,369 @@
+#include "views.h"
+
+#include <string>
+
+#include "states/formats.h"
+#include "vk_check.h"
+
+namespace rhi::vk {
+
+ViewTarget::~ViewTarget() {
+  if (!device_) return;
+  VkDevice vkDevice = device_->gpu().Device();
+  VkImageView imageView = imageView_;
+  VkBufferView bufferView = bufferView_;
+  device_->gpu().DeferDestroy([=] {
+    vkDestroyImageView(vkDevice, imageView, nullptr);
+    vkDestroyBufferView(vkDevice, bufferView, nullptr);
+  });
+}
+
+VkDescriptorBufferInfo ViewTarget::bufferRange() const {
+  return {buffer_->handle(), buffer_->baseOffset() + firstByte_, byteCount_};
+}
+
+HRESULT ViewTarget::InitTexture(DeviceImpl& device, Resource* resource, DXGI_FORMAT format, VkImageViewType type,
+                                VkImageSubresourceRange range, VkImageUsageFlags usage, const char* call) {
+  Gpu& gpu = device.gpu();
+  TextureStorage* texture = AsTexture(resource);
+  if (!texture || texture->isStaging())
+    return gpu.Refuse(std::string(call) + ": the resource must be a non-staging texture");
+  const TextureShape& shape = texture->shape();
+  if (format == DXGI_FORMAT_UNKNOWN) format = shape.format;
+  const auto* info = states::GetFormatInfo(format);
+  if (!info || info->kind == states::ComponentKind::Typeless)
+    return gpu.Refuse(std::string(call) + ": view format " + std::to_string(format) + " must be a typed format");
+  if (range.baseMipLevel + range.levelCount > shape.mipLevels ||
+      range.baseArrayLayer + range.layerCount > shape.arraySize)
+    return gpu.Refuse(std::string(call) + ": mip or array range outside the texture");
+  device_ = &device;
+  resource_ = resource;
+  texture_ = texture;
+  format_ = format;
+  range_ = range;
+
+  VkImageViewUsageCreateInfo usageInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_USAGE_CREATE_INFO};
+  usageInfo.usage = usage;
+  VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  viewInfo.pNext = &usageInfo;
+  viewInfo.image = texture->image();
+  viewInfo.viewType = type;
+  // Depth images can only be viewed in their own format; colour views may
+  // reinterpret within the typeless family.
+  viewInfo.format = (texture->aspects() & VK_IMAGE_ASPECT_DEPTH_BIT)
+                        ? texture->vkFormat()
+                        : info->vkFormat;
+  viewInfo.components = states::ToVkComponentMapping(info->swizzle);
+  viewInfo.subresourceRange = range;
+  VkResult result = vkCreateImageView(gpu.Device(), &viewInfo, nullptr, &imageView_);
+  return ToHresult(result);
+}
+
+HRESULT ViewTarget::InitBuffer(DeviceImpl& device, Resource* resource, DXGI_FORMAT format, UINT firstElement,
+                               UINT numElements, bool storage, const char* call) {
+  Gpu& gpu = device.gpu();
+  BufferImpl* buffer = AsBuffer(resource);
+  if (!buffer) return gpu.Refuse(std::string(call) + ": the resource must be a buffer");
+  const BUFFER_DESC& desc = buffer->desc();
+  UINT elementSize = desc.StructureByteStride;
+  if (!(desc.MiscFlags & RESOURCE_MISC_BUFFER_STRUCTURED)) {
+    const auto* info = states::GetFormatInfo(format);
+    if (!info) return gpu.Refuse(std::string(call) + ": a typed or raw buffer view needs a format");
+    elementSize = info->bytesPerElement;
+  }
+  const VkDeviceSize first = VkDeviceSize(firstElement) * elementSize;
+  const VkDeviceSize count = VkDeviceSize(numElements) * elementSize;
+  if (numElements == 0 || first + count > desc.ByteWidth)
+    return gpu.Refuse(std::string(call) + ": elements " + std::to_string(firstElement) + "+" +
+                      std::to_string(numElements) + " lie outside the buffer");
+  device_ = &device;
+  resource_ = resource;
+  buffer_ = buffer;
+  format_ = format;
+  firstByte_ = first;
+  byteCount_ = count;
+  // Typed views of non-dynamic buffers also get a texel-buffer view.
+  const auto* info = states::GetFormatInfo(format);
+  if (!(desc.MiscFlags & RESOURCE_MISC_BUFFER_STRUCTURED) && format != DXGI_FORMAT_R32_TYPELESS && info &&
+      !buffer->isDynamic()) {
+    VkBufferViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+    viewInfo.buffer = buffer->handle();
+    viewInfo.format = info->vkFormat;
+    viewInfo.offset = first;
+    viewInfo.range = count;
+    (void)storage;
+    return ToHresult(vkCreateBufferView(gpu.Device(), &viewInfo, nullptr, &bufferView_));
+  }
+  return S_OK;
+}
+
+namespace {
+
+VkImageViewType ViewType(UINT dimension, bool isArray, bool cube) {
+  if (cube) return VK_IMAGE_VIEW_TYPE_CUBE;
+  if (dimension == RESOURCE_DIMENSION_TEXTURE1D) return isArray ? VK_IMAGE_VIEW_TYPE_1D_ARRAY : VK_IMAGE_VIEW_TYPE_1D;
+  return isArray ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
+}
+
+VkImageAspectFlags ColorOrDepth(const TextureStorage& texture) {
+  return (texture.aspects() & VK_IMAGE_ASPECT_DEPTH_BIT) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------
+// Shader resource views
+
+template <>
+HRESULT ShaderResourceViewImpl::Initialize(Resource* resource) {
+  DeviceImpl& dev = device();
+  const auto& d = desc_;
+  switch (d.ViewDimension) {
+    case SRV_DIMENSION_BUFFER:
+      return InitBuffer(dev, resource, d.Format, d.Buffer.FirstElement, d.Buffer.NumElements, false,
+                        "CreateShaderResourceView");
+    case SRV_DIMENSION_BUFFEREX:
+      return InitBuffer(dev, resource, d.Format, d.BufferEx.FirstElement, d.BufferEx.NumElements, false,
+                        "CreateShaderResourceView");
+    default: break;
+  }
+  TextureStorage* texture = AsTexture(resource);
+  if (!texture) return dev.gpu().Refuse("CreateShaderResourceView: ViewDimension does not match a buffer");
+  VkImageSubresourceRange range{ColorOrDepth(*texture), 0, 1, 0, 1};
+  bool isArray = false, cube = false;
+  switch (d.ViewDimension) {
+    case SRV_DIMENSION_TEXTURE1D:
+    case SRV_DIMENSION_TEXTURE2D:
+      range.baseMipLevel = d.Texture2D.MostDetailedMip;
+      range.levelCount = d.Texture2D.MipLevels;
+      break;
+    case SRV_DIMENSION_TEXTURE1DARRAY:
+    case SRV_DIMENSION_TEXTURE2DARRAY:
+      range.baseMipLevel = d.Texture2DArray.MostDetailedMip;
+      range.levelCount = d.Texture2DArray.MipLevels;
+      range.baseArrayLayer = d.Texture2DArray.FirstArraySlice;
+      range.layerCount = d.Texture2DArray.ArraySize;
+      isArray = true;
+      break;
+    case SRV_DIMENSION_TEXTURE2DMS: break;
+    case SRV_DIMENSION_TEXTURE2DMSARRAY:
+      range.baseArrayLayer = d.Texture2DMSArray.FirstArraySlice;
+      range.layerCount = d.Texture2DMSArray.ArraySize;
+      isArray = true;
+      break;
+    case SRV_DIMENSION_TEXTURECUBE:
+      range.baseMipLevel = d.TextureCube.MostDetailedMip;
+      range.levelCount = d.TextureCube.MipLevels;
+      range.layerCount = 6;
+      cube = true;
+      break;
+    default:
+      return dev.gpu().Refuse("CreateShaderResourceView: ViewDimension " + std::to_string(d.ViewDimension) +
+                              " is not supported");
+  }
+  // D3D11: MipLevels -1 means "all remaining".
+  if (range.levelCount == UINT(-1)) range.levelCount = texture->shape().mipLevels - range.baseMipLevel;
+  return InitTexture(dev, resource, d.Format, ViewType(texture->shape().dimension, isArray, cube), range,
+                     VK_IMAGE_USAGE_SAMPLED_BIT, "CreateShaderResourceView");
+}
+
+// ---------------------------------------------------------------------------
+// Render target and depth-stencil views
+
+template <>
+HRESULT RenderTargetViewImpl::Initialize(Resource* resource) {
+  const auto& d = desc_;
+  VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  bool isArray = false;
+  switch (d.ViewDimension) {
+    case RTV_DIMENSION_TEXTURE1D:
+    case RTV_DIMENSION_TEXTURE2D: range.baseMipLevel = d.Texture2D.MipSlice; break;
+    case RTV_DIMENSION_TEXTURE1DARRAY:
+    case RTV_DIMENSION_TEXTURE2DARRAY:
+      range.baseMipLevel = d.Texture2DArray.MipSlice;
+      range.baseArrayLayer = d.Texture2DArray.FirstArraySlice;
+      range.layerCount = d.Texture2DArray.ArraySize;
+      isArray = true;
+      break;
+    case RTV_DIMENSION_TEXTURE2DMS: break;
+    case RTV_DIMENSION_TEXTURE2DMSARRAY:
+      range.baseArrayLayer = d.Texture2DMSArray.FirstArraySlice;
+      range.layerCount = d.Texture2DMSArray.ArraySize;
+      isArray = true;
+      break;
+    default:
+      return device().gpu().Refuse("CreateRenderTargetView: ViewDimension " + std::to_string(d.ViewDimension) +
+                                   " is not supported");
+  }
+  TextureStorage* texture = AsTexture(resource);
+  if (texture && !(texture->shape().bindFlags & BIND_RENDER_TARGET))
+    return device().gpu().Refuse("CreateRenderTargetView: the texture lacks BIND_RENDER_TARGET");
+  RESOURCE_DIMENSION dimension = texture ? texture->shape().dimension : RESOURCE_DIMENSION_TEXTURE2D;
+  return InitTexture(device(), resource, d.Format, ViewType(dimension, isArray, false), range,
+                     VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, "CreateRenderTargetView");
+}
+
+template <>
+HRESULT DepthStencilViewImpl::Initialize(Resource* resource) {
+  const auto& d = desc_;
+  TextureStorage* texture = AsTexture(resource);
+  if (!texture || !(texture->shape().bindFlags & BIND_DEPTH_STENCIL))
+    return device().gpu().Refuse("CreateDepthStencilView: the resource must be a texture with BIND_DEPTH_STENCIL");
+  VkImageSubresourceRange range{texture->aspects(), 0, 1, 0, 1};
+  bool isArray = false;
+  switch (d.ViewDimension) {
+    case DSV_DIMENSION_TEXTURE1D:
+    case DSV_DIMENSION_TEXTURE2D: range.baseMipLevel = d.Texture2D.MipSlice; break;
+    case DSV_DIMENSION_TEXTURE1DARRAY:
+    case DSV_DIMENSION_TEXTURE2DARRAY:
+      range.baseMipLevel = d.Texture2DArray.MipSlice;
+      range.baseArrayLayer = d.Texture2DArray.FirstArraySlice;
+      range.layerCount = d.Texture2DArray.ArraySize;
+      isArray = true;
+      break;
+    case DSV_DIMENSION_TEXTURE2DMS: break;
+    default:
+      return device().gpu().Refuse("CreateDepthStencilView: ViewDimension " + std::to_string(d.ViewDimension) +
+                                   " is not supported");
+  }
+  return InitTexture(device(), resource, d.Format, ViewType(texture->shape().dimension, isArray, false), range,
+                     VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, "CreateDepthStencilView");
+}
+
+// The view a NULL desc means: the whole resource in its own format.
+namespace {
+
+SHADER_RESOURCE_VIEW_DESC DefaultDesc(Resource* resource, const SHADER_RESOURCE_VIEW_DESC*) {
+  SHADER_RESOURCE_VIEW_DESC d{};
+  if (BufferImpl* buffer = AsBuffer(resource)) {
+    d.ViewDimension = SRV_DIMENSION_BUFFER;
+    UINT stride = buffer->desc().StructureByteStride ? buffer->desc().StructureByteStride : 4;
+    d.Buffer = {0, buffer->desc().ByteWidth / stride};
+    return d;
+  }
+  const TextureShape& s = AsTexture(resource)->shape();
+  d.Format = s.format;
+  if (s.samples > 1) {
+    d.ViewDimension = s.arraySize > 1 ? SRV_DIMENSION_TEXTURE2DMSARRAY : SRV_DIMENSION_TEXTURE2DMS;
+    d.Texture2DMSArray = {0, s.arraySize};
+  } else if (s.miscFlags & RESOURCE_MISC_TEXTURECUBE) {
+    d.ViewDimension = SRV_DIMENSION_TEXTURECUBE;
+    d.TextureCube = {0, s.mipLevels};
+  } else if (s.arraySize > 1) {
+    d.ViewDimension = s.dimension == RESOURCE_DIMENSION_TEXTURE1D ? SRV_DIMENSION_TEXTURE1DARRAY
+                                                                   : SRV_DIMENSION_TEXTURE2DARRAY;
+    d.Texture2DArray = {0, s.mipLevels, 0, s.arraySize};
+  } else {
+    d.ViewDimension = s.dimension == RESOURCE_DIMENSION_TEXTURE1D ? SRV_DIMENSION_TEXTURE1D : SRV_DIMENSION_TEXTURE2D;
+    d.Texture2D = {0, s.mipLevels};
+  }
+  return d;
+}
+
+RENDER_TARGET_VIEW_DESC DefaultDesc(Resource* resource, const RENDER_TARGET_VIEW_DESC*) {
+  RENDER_TARGET_VIEW_DESC d{};
+  const TextureShape& s = AsTexture(resource)->shape();
+  d.Format = s.format;
+  if (s.samples > 1) {
+    d.ViewDimension = s.arraySize > 1 ? RTV_DIMENSION_TEXTURE2DMSARRAY : RTV_DIMENSION_TEXTURE2DMS;
+    d.Texture2DMSArray = {0, s.arraySize};
+  } else if (s.arraySize > 1) {
+    d.ViewDimension = RTV_DIMENSION_TEXTURE2DARRAY;
+    d.Texture2DArray = {0, 0, s.arraySize};
+  } else {
+    d.ViewDimension = s.dimension == RESOURCE_DIMENSION_TEXTURE1D ? RTV_DIMENSION_TEXTURE1D : RTV_DIMENSION_TEXTURE2D;
+  }
+  return d;
+}
+
+DEPTH_STENCIL_VIEW_DESC DefaultDesc(Resource* resource, const DEPTH_STENCIL_VIEW_DESC*) {
+  DEPTH_STENCIL_VIEW_DESC d{};
+  const TextureShape& s = AsTexture(resource)->shape();
+  d.Format = s.format;
+  if (s.samples > 1) {
+    d.ViewDimension = DSV_DIMENSION_TEXTURE2DMS;
+  } else if (s.arraySize > 1) {
+    d.ViewDimension = DSV_DIMENSION_TEXTURE2DARRAY;
+    d.Texture2DArray = {0, 0, s.arraySize};
+  } else {
+    d.ViewDimension = s.dimension == RESOURCE_DIMENSION_TEXTURE1D ? DSV_DIMENSION_TEXTURE1D : DSV_DIMENSION_TEXTURE2D;
+  }
+  return d;
+}
+
+}  // namespace
+
+template <class Interface, class Desc>
+HRESULT ViewImpl<Interface, Desc>::Create(DeviceImpl* device, Resource* resource, const Desc* desc,
+                                          Interface** out) {
+  if (!resource) return device->gpu().Refuse("Create*View: pResource is NULL");
+  if (!desc && !AsBuffer(resource) && !AsTexture(resource))
+    return device->gpu().Refuse("Create*View: unknown resource");
+  if (!desc && AsBuffer(resource) && !std::is_same_v<Desc, SHADER_RESOURCE_VIEW_DESC>)
+    return device->gpu().Refuse("Create*View: a buffer view needs a description");
+  Desc resolved;
+  if (desc)
+    resolved = *desc;
+  else if constexpr (std::is_same_v<Desc, SHADER_RESOURCE_VIEW_DESC>)
+    resolved = DefaultDesc(resource, desc);
+  else
+    resolved = AsTexture(resource) ? DefaultDesc(resource, desc) : Desc{};
+  ComPtr<ViewImpl> view;
+  view.Attach(new ViewImpl(device, resolved));
+  if (HRESULT hr = view->Initialize(resource); FAILED(hr)) return hr;
+  *out = view.Detach();
+  return S_OK;
+}
+
+template class ViewImpl<ShaderResourceView, SHADER_RESOURCE_VIEW_DESC>;
+template class ViewImpl<RenderTargetView, RENDER_TARGET_VIEW_DESC>;
+template class ViewImpl<DepthStencilView, DEPTH_STENCIL_VIEW_DESC>;
+
+// ---------------------------------------------------------------------------
+// Unordered access views
+
+HRESULT UnorderedAccessViewImpl::Create(DeviceImpl* device, Resource* resource, const UNORDERED_ACCESS_VIEW_DESC* desc,
+                                        UnorderedAccessView** out) {
+  if (!resource) return device->gpu().Refuse("CreateUnorderedAccessView: pResource is NULL");
+  UNORDERED_ACCESS_VIEW_DESC resolved{};
+  if (desc) {
+    resolved = *desc;
+  } else if (BufferImpl* buffer = AsBuffer(resource)) {
+    resolved.ViewDimension = UAV_DIMENSION_BUFFER;
+    UINT stride = buffer->desc().StructureByteStride ? buffer->desc().StructureByteStride : 4;
+    resolved.Format = buffer->desc().StructureByteStride ? DXGI_FORMAT_UNKNOWN : DXGI_FORMAT_R32_UINT;
+    resolved.Buffer = {0, buffer->desc().ByteWidth / stride, 0};
+  } else if (TextureStorage* texture = AsTexture(resource)) {
+    resolved.Format = texture->shape().format;
+    resolved.ViewDimension = texture->shape().arraySize > 1 ? UAV_DIMENSION_TEXTURE2DARRAY : UAV_DIMENSION_TEXTURE2D;
+    resolved.Texture2DArray = {0, 0, texture->shape().arraySize};
+  }
+  ComPtr<UnorderedAccessViewImpl> view;
+  view.Attach(new UnorderedAccessViewImpl(device, resolved));
+  if (HRESULT hr = view->Initialize(resource); FAILED(hr)) return hr;
+  *out = view.Detach();
+  return S_OK;
+}
+
+HRESULT UnorderedAccessViewImpl::Initialize(Resource* resource) {
+  const auto& d = desc_;
+  BufferImpl* buffer = AsBuffer(resource);
+  TextureStorage* texture = AsTexture(resource);
+  const UINT bind = buffer ? buffer->desc().BindFlags : texture ? texture->shape().bindFlags : 0;
+  if (!(bind & BIND_UNORDERED_ACCESS))
+    return device().gpu().Refuse("CreateUnorderedAccessView: the resource lacks BIND_UNORDERED_ACCESS");
+  if (d.ViewDimension == UAV_DIMENSION_BUFFER)
+    return InitBuffer(device(), resource, d.Format, d.Buffer.FirstElement, d.Buffer.NumElements, true,
+                      "CreateUnorderedAccessView");
+  VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, d.Texture2D.MipSlice, 1, 0, 1};
+  bool isArray = d.ViewDimension == UAV_DIMENSION_TEXTURE2DARRAY || d.ViewDimension == UAV_DIMENSION_TEXTURE1DARRAY;
+  if (isArray) {
+    range.baseArrayLayer = d.Texture2DArray.FirstArraySlice;
+    range.layerCount = d.Texture2DArray.ArraySize;
+  }
+  RESOURCE_DIMENSION dimension = texture ? texture->shape().dimension : RESOURCE_DIMENSION_TEXTURE2D;
+  return InitTexture(device(), resource, d.Format, ViewType(dimension, isArray, false), range,
+                     VK_IMAGE_USAGE_STORAGE_BIT, "CreateUnorderedAccessView");
+}
+
+}  // namespace rhi::vk

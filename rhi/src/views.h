@@ -1,0 +1,89 @@
+// Shader-resource, render-target, depth-stencil and unordered-access views.
+#pragma once
+
+#include "device.h"
+#include "resources.h"
+
+namespace rhi::vk {
+
+// What every view holds: the viewed resource, and the Vulkan objects that
+// descriptors and attachments need.
+class ViewTarget {
+ public:
+  Resource* resource() const { return resource_.Get(); }
+  // Exactly one of these is non-null.
+  BufferImpl* buffer() const { return buffer_; }
+  TextureStorage* texture() const { return texture_; }
+  TrackedResource& tracked() const {
+    return buffer_ ? static_cast<TrackedResource&>(*buffer_) : static_cast<TrackedResource&>(*texture_);
+  }
+
+  DXGI_FORMAT format() const { return format_; }
+  VkImageView imageView() const { return imageView_; }
+  VkImageSubresourceRange range() const { return range_; }
+  VkBufferView bufferView() const { return bufferView_; }
+  // Structured and raw buffer views bind as storage buffers over this range.
+  VkDescriptorBufferInfo bufferRange() const;
+
+ protected:
+  ~ViewTarget();
+  // `format` UNKNOWN means the resource's format.
+  HRESULT InitTexture(DeviceImpl& device, Resource* resource, DXGI_FORMAT format, VkImageViewType type,
+                      VkImageSubresourceRange range, VkImageUsageFlags usage, const char* call);
+  HRESULT InitBuffer(DeviceImpl& device, Resource* resource, DXGI_FORMAT format, UINT firstElement,
+                     UINT numElements, bool storage, const char* call);
+
+ private:
+  DeviceImpl* device_ = nullptr;
+  ComPtr<Resource> resource_;
+  BufferImpl* buffer_ = nullptr;
+  TextureStorage* texture_ = nullptr;
+  DXGI_FORMAT format_ = DXGI_FORMAT_UNKNOWN;
+  VkImageView imageView_ = VK_NULL_HANDLE;
+  VkImageSubresourceRange range_{};
+  VkBufferView bufferView_ = VK_NULL_HANDLE;
+  VkDeviceSize firstByte_ = 0;
+  VkDeviceSize byteCount_ = 0;
+};
+
+template <class Interface, class Desc>
+class ViewImpl final : public DeviceChildImpl<Interface>, public ViewTarget {
+ public:
+  static HRESULT Create(DeviceImpl* device, Resource* resource, const Desc* desc, Interface** out);
+  void GetResource(Resource** ppResource) override {
+    resource()->AddRef();
+    *ppResource = resource();
+  }
+  void GetDesc(Desc* desc) override { *desc = desc_; }
+  // Attachments index into textures only.
+  TextureStorage& texture() const { return *ViewTarget::texture(); }
+
+ private:
+  ViewImpl(DeviceImpl* device, const Desc& desc) : DeviceChildImpl<Interface>(device), desc_(desc) {}
+  HRESULT Initialize(Resource* resource);
+  Desc desc_;
+};
+
+using ShaderResourceViewImpl = ViewImpl<ShaderResourceView, SHADER_RESOURCE_VIEW_DESC>;
+using RenderTargetViewImpl = ViewImpl<RenderTargetView, RENDER_TARGET_VIEW_DESC>;
+using DepthStencilViewImpl = ViewImpl<DepthStencilView, DEPTH_STENCIL_VIEW_DESC>;
+
+// UAVs are bound to buffers as well as textures, so `texture()` may be null.
+class UnorderedAccessViewImpl final : public DeviceChildImpl<UnorderedAccessView>, public ViewTarget {
+ public:
+  static HRESULT Create(DeviceImpl* device, Resource* resource, const UNORDERED_ACCESS_VIEW_DESC* desc,
+                        UnorderedAccessView** out);
+  void GetResource(Resource** ppResource) override {
+    resource()->AddRef();
+    *ppResource = resource();
+  }
+  void GetDesc(UNORDERED_ACCESS_VIEW_DESC* desc) override { *desc = desc_; }
+
+ private:
+  UnorderedAccessViewImpl(DeviceImpl* device, const UNORDERED_ACCESS_VIEW_DESC& desc)
+      : DeviceChildImpl(device), desc_(desc) {}
+  HRESULT Initialize(Resource* resource);
+  UNORDERED_ACCESS_VIEW_DESC desc_;
+};
+
+}  // namespace rhi::vk

@@ -1,0 +1,132 @@
+#include "rhi_reference/blend.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace rhi::reference {
+namespace {
+
+constexpr int kAlpha = 3;
+
+// FS 3.1.3: float32 operations flush denorms to a sign-preserved zero, on input
+// and on output. The blender follows the float32 rules (FS 17.5).
+float FlushDenorm(float x) {
+  return std::fpclassify(x) == FP_SUBNORMAL ? std::copysign(0.0f, x) : x;
+}
+
+// max then min with the shader semantics (FS 22.10.10/11: a NaN operand loses),
+// so a NaN entering a UNORM blend becomes 0, as FS 3.2.3.6 converts NaN.
+float Saturate(float x) { return std::fmin(std::fmax(x, 0.0f), 1.0f); }
+
+// FS 17.5: "Values entering Blending Hardware, including the BlendFactor value,
+// are always clamped to the range of the RenderTarget before being used", every
+// component, present in the format or not. float16 targets may skip the clamp
+// ("permitted to not clamp"); the reference blends them unclamped in float32.
+Float4 EnterBlender(DXGI_FORMAT format, Float4 value) {
+  for (float& channel : value) {
+    channel = IsNormalizedFormat(format) ? Saturate(channel) : FlushDenorm(channel);
+  }
+  return value;
+}
+
+struct BlenderInputs {
+  Float4 src0;    // SV_Target of this target
+  Float4 src1;    // SV_Target1 (dual source)
+  Float4 dest;    // the render target, decoded (sRGB decoded to linear, FS 17.4)
+  Float4 factor;  // OMSetBlendState's blend factor
+};
+
+// The factor D3D11_BLEND `blend` gives for `channel` (FS 17.1, the enum comments).
+float Factor(BLEND blend, int channel, const BlenderInputs& in) {
+  switch (blend) {
+    case BLEND_ZERO: return 0.0f;
+    case BLEND_ONE: return 1.0f;
+    case BLEND_SRC_COLOR: return in.src0[channel];
+    case BLEND_INV_SRC_COLOR: return 1.0f - in.src0[channel];
+    case BLEND_SRC_ALPHA: return in.src0[kAlpha];
+    case BLEND_INV_SRC_ALPHA: return 1.0f - in.src0[kAlpha];
+    case BLEND_DEST_ALPHA: return in.dest[kAlpha];
+    case BLEND_INV_DEST_ALPHA: return 1.0f - in.dest[kAlpha];
+    case BLEND_DEST_COLOR: return in.dest[channel];
+    case BLEND_INV_DEST_COLOR: return 1.0f - in.dest[channel];
+    // (f,f,f,1), f = min(1 - RT(N).a, oN.a)
+    case BLEND_SRC_ALPHA_SAT:
+      return channel == kAlpha ? 1.0f : std::fmin(in.src0[kAlpha], 1.0f - in.dest[kAlpha]);
+    case BLEND_BLEND_FACTOR: return in.factor[channel];
+    case BLEND_INV_BLEND_FACTOR: return 1.0f - in.factor[channel];
+    case BLEND_SRC1_COLOR: return in.src1[channel];
+    case BLEND_INV_SRC1_COLOR: return 1.0f - in.src1[channel];
+    case BLEND_SRC1_ALPHA: return in.src1[kAlpha];
+    case BLEND_INV_SRC1_ALPHA: return 1.0f - in.src1[kAlpha];
+  }
+  return 0.0f;  // not a D3D11_BLEND: CreateBlendState would have refused it
+}
+
+// One channel of Src*SrcFactor OP Dest*DestFactor. MIN and MAX ignore the
+// factors and behave like the min/max shader instructions (FS 17.1).
+float Combine(BLEND_OP op, float src, float srcFactor, float dest, float destFactor) {
+  const float srcTerm = src * srcFactor;
+  const float destTerm = dest * destFactor;
+  switch (op) {
+    case BLEND_OP_ADD: return srcTerm + destTerm;
+    case BLEND_OP_SUBTRACT: return srcTerm - destTerm;
+    case BLEND_OP_REV_SUBTRACT: return destTerm - srcTerm;
+    case BLEND_OP_MIN: return std::fmin(src, dest);
+    case BLEND_OP_MAX: return std::fmax(src, dest);
+  }
+  return 0.0f;
+}
+
+// The blended colour before conversion to the target format; Encode then clamps
+// it to the target's range (FS 17.5: "there is a clamp to the RenderTarget range
+// after blend") and quantises it.
+Float4 Blend(DXGI_FORMAT format, const RENDER_TARGET_BLEND_DESC& blend, const Float4& blendFactor,
+             const Float4& src0, const Float4& src1, const StoredColor& dest) {
+  const BlenderInputs in{EnterBlender(format, src0), EnterBlender(format, src1),
+                         Decode(format, dest), EnterBlender(format, blendFactor)};
+  Float4 result{};
+  for (int c = 0; c < kAlpha; ++c) {
+    result[c] = Combine(blend.BlendOp, in.src0[c], Factor(blend.SrcBlend, c, in), in.dest[c],
+                        Factor(blend.DestBlend, c, in));
+  }
+  result[kAlpha] = Combine(blend.BlendOpAlpha, in.src0[kAlpha], Factor(blend.SrcBlendAlpha, kAlpha, in),
+                           in.dest[kAlpha], Factor(blend.DestBlendAlpha, kAlpha, in));
+  for (float& channel : result) channel = FlushDenorm(channel);
+  return result;
+}
+
+// FS 17.15: masked-off channels keep what the target held.
+StoredColor ApplyWriteMask(UINT8 writeMask, const StoredColor& written, const StoredColor& dest) {
+  StoredColor result = dest;
+  for (int c = 0; c < 4; ++c) {
+    if ((writeMask & (1u << c)) != 0) result.bits[c] = written.bits[c];
+  }
+  return result;
+}
+
+}  // namespace
+
+BlendOutput BlendResult(DXGI_FORMAT format, const RENDER_TARGET_BLEND_DESC& blend,
+                        const Float4& blendFactor, const Float4& src0, const Float4& src1,
+                        const StoredColor& dest) {
+  // Integer targets are never blended; BlendEnable FALSE writes the converted source.
+  const bool blends = blend.BlendEnable != FALSE && !IsUintFormat(format);
+  const Float4 color = blends ? Blend(format, blend, blendFactor, src0, src1, dest) : src0;
+  const StoredColor stored = ApplyWriteMask(blend.RenderTargetWriteMask, Encode(format, color), dest);
+  return {stored, Decode(format, stored)};
+}
+
+const RENDER_TARGET_BLEND_DESC& TargetBlendDesc(const BLEND_DESC& desc, UINT renderTarget) {
+  if (renderTarget >= SIMULTANEOUS_RENDER_TARGET_COUNT) {
+    throw std::out_of_range("rhi::reference: render target index above 7");
+  }
+  return desc.IndependentBlendEnable != FALSE ? desc.RenderTarget[renderTarget] : desc.RenderTarget[0];
+}
+
+BlendOutput BlendResult(DXGI_FORMAT format, const BLEND_DESC& desc, UINT renderTarget,
+                        const Float4& blendFactor, const Float4& src0, const Float4& src1,
+                        const StoredColor& dest) {
+  return BlendResult(format, TargetBlendDesc(desc, renderTarget), blendFactor, src0, src1, dest);
+}
+
+}  // namespace rhi::reference

@@ -23,9 +23,16 @@ using ShaderResourceViewImpl = ViewImpl<ShaderResourceView, SHADER_RESOURCE_VIEW
 using RenderTargetViewImpl = ViewImpl<RenderTargetView, RENDER_TARGET_VIEW_DESC>;
 using DepthStencilViewImpl = ViewImpl<DepthStencilView, DEPTH_STENCIL_VIEW_DESC>;
 class UnorderedAccessViewImpl;
+template <class Interface, class Desc>
+class StateObject;
+using BlendStateImpl = StateObject<BlendState, BLEND_DESC>;
+using DepthStencilStateImpl = StateObject<DepthStencilState, DEPTH_STENCIL_DESC>;
+using RasterizerStateImpl = StateObject<RasterizerState, RASTERIZER_DESC>;
+class SamplerStateImpl;
 class InputLayoutImpl;
 class ShaderCode;
 class QueryImpl;
+class QueryTracker;
 struct GraphicsPipeline;
 struct ComputePipeline;
 
@@ -122,6 +129,8 @@ class ContextImpl final : public DeviceContext {
 
   void ClearState() override;
   void Flush() override;
+  // A query destroyed while active leaves the active sets.
+  void ForgetQuery(QueryImpl& query);
 
   // Device-side uploads (initial data) go through the context's command stream.
   void UploadBuffer(BufferImpl& buffer, VkDeviceSize offset, const void* data, VkDeviceSize size);
@@ -140,24 +149,24 @@ class ContextImpl final : public DeviceContext {
 
  private:
   struct VertexBufferBinding {
-    ComPtr<BufferImpl> buffer;
+    Bound<BufferImpl> buffer;
     UINT stride = 0;
     UINT offset = 0;
   };
   struct IndexBufferBinding {
-    ComPtr<BufferImpl> buffer;
+    Bound<BufferImpl> buffer;
     DXGI_FORMAT format = DXGI_FORMAT_UNKNOWN;
     UINT offset = 0;
   };
   struct StageState {
     std::shared_ptr<const ShaderCode> shader;
-    ComPtr<DeviceChild> shaderObject;  // keeps the D3D object alive while bound
-    std::array<ComPtr<BufferImpl>, COMMONSHADER_CONSTANT_BUFFER_API_SLOT_COUNT> constantBuffers;
-    std::array<ComPtr<ShaderResourceViewImpl>, COMMONSHADER_INPUT_RESOURCE_SLOT_COUNT> shaderResources;
-    std::array<ComPtr<DeviceChild>, COMMONSHADER_SAMPLER_SLOT_COUNT> samplers;
+    Bound<Bindable> shaderObject;  // keeps the D3D object alive while bound
+    std::array<Bound<BufferImpl>, COMMONSHADER_CONSTANT_BUFFER_API_SLOT_COUNT> constantBuffers;
+    std::array<Bound<ShaderResourceViewImpl>, COMMONSHADER_INPUT_RESOURCE_SLOT_COUNT> shaderResources;
+    std::array<Bound<SamplerStateImpl>, COMMONSHADER_SAMPLER_SLOT_COUNT> samplers;
   };
   struct StreamOutTarget {
-    ComPtr<BufferImpl> buffer;
+    Bound<BufferImpl> buffer;
     UINT offset = 0;  // UINT(-1): append where the last stream-out stopped
     bool offsetPending = false;  // the next stream-out starts at `offset`, not at the counter
   };
@@ -193,22 +202,22 @@ class ContextImpl final : public DeviceContext {
 
   DeviceImpl* device_;
 
-  ComPtr<InputLayoutImpl> inputLayout_;
+  Bound<InputLayoutImpl> inputLayout_;
   std::array<VertexBufferBinding, IA_VERTEX_INPUT_RESOURCE_SLOT_COUNT> vertexBuffers_;
   IndexBufferBinding indexBuffer_;
   PRIMITIVE_TOPOLOGY topology_ = PRIMITIVE_TOPOLOGY_UNDEFINED;
   std::array<StageState, kShaderStageCount> stages_;
-  std::array<ComPtr<UnorderedAccessViewImpl>, PS_CS_UAV_REGISTER_COUNT> computeUavs_;
+  std::array<Bound<UnorderedAccessViewImpl>, PS_CS_UAV_REGISTER_COUNT> computeUavs_;
   std::array<StreamOutTarget, SO_BUFFER_SLOT_COUNT> streamOut_;
-  ComPtr<DeviceChild> rasterizer_;
+  Bound<RasterizerStateImpl> rasterizer_;
   std::vector<VIEWPORT> viewports_;
   std::vector<RECT> scissors_;
-  std::array<ComPtr<RenderTargetViewImpl>, SIMULTANEOUS_RENDER_TARGET_COUNT> renderTargets_;
-  ComPtr<DepthStencilViewImpl> depthStencil_;
-  ComPtr<DeviceChild> blendState_;
+  std::array<Bound<RenderTargetViewImpl>, SIMULTANEOUS_RENDER_TARGET_COUNT> renderTargets_;
+  Bound<DepthStencilViewImpl> depthStencil_;
+  Bound<BlendStateImpl> blendState_;
   std::array<FLOAT, 4> blendFactor_{1, 1, 1, 1};
   UINT sampleMask_ = DEFAULT_SAMPLE_MASK;
-  ComPtr<DeviceChild> depthStencilState_;
+  Bound<DepthStencilStateImpl> depthStencilState_;
   UINT stencilRef_ = 0;
 
   // Recording state.
@@ -222,8 +231,7 @@ class ContextImpl final : public DeviceContext {
   bool dynamicStateDirty_ = true;
   bool descriptorsDirty_ = true;
   bool vertexBuffersDirty_ = true;
-  std::vector<QueryImpl*> activeQueries_;
-  friend class QueryImpl;
+  std::unique_ptr<QueryTracker> queries_;
 };
 
 }  // namespace rhi::vk

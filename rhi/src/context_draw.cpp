@@ -31,13 +31,10 @@ VkPipelineStageFlags2 StageFlags(ShaderStage stage) {
   return VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
 }
 
-uint64_t SerialOf(DeviceChild* object) {
-  // Every backend object derives from DeviceChildImpl; the serial is what pipeline keys use.
-  if (!object) return 0;
-  if (auto* blend = dynamic_cast<BlendStateImpl*>(object)) return blend->serial();
-  if (auto* depth = dynamic_cast<DepthStencilStateImpl*>(object)) return depth->serial();
-  if (auto* raster = dynamic_cast<RasterizerStateImpl*>(object)) return raster->serial();
-  return 0;
+// Pipeline keys name state objects by serial; 0 stands for the D3D11 default.
+template <class T>
+uint64_t SerialOf(const Bound<T>& state) {
+  return state ? state->serial() : 0;
 }
 
 uint32_t TopologyClass(PRIMITIVE_TOPOLOGY topology) {
@@ -157,9 +154,9 @@ const GraphicsPipeline* ContextImpl::PrepareDraw(const char* call, TrackedResour
   }
   key.inputLayout = inputLayout_ ? inputLayout_->serial() : 0;
   inputs.inputLayout = inputLayout_.Get();
-  key.blend = SerialOf(blendState_.Get());
-  key.depthStencil = SerialOf(depthStencilState_.Get());
-  key.rasterizer = SerialOf(rasterizer_.Get());
+  key.blend = SerialOf(blendState_);
+  key.depthStencil = SerialOf(depthStencilState_);
+  key.rasterizer = SerialOf(rasterizer_);
   inputs.blend = &BlendDescOf(blendState_.Get());
   inputs.depthStencil = &DepthStencilDescOf(depthStencilState_.Get());
   inputs.rasterizer = &RasterizerDescOf(rasterizer_.Get());
@@ -324,9 +321,9 @@ void ContextImpl::PushDescriptors(VkPipelineBindPoint bindPoint, VkPipelineLayou
         }
         continue;
       case RegisterClass::Sampler: {
-        DeviceChild* sampler = reg.slot < stage.samplers.size() ? stage.samplers[reg.slot].Get() : nullptr;
+        SamplerStateImpl* sampler = reg.slot < stage.samplers.size() ? stage.samplers[reg.slot].Get() : nullptr;
         // D3D11 samples with the default sampler state where none is bound.
-        images[i].sampler = sampler ? static_cast<SamplerStateImpl*>(sampler)->handle() : defaultSampler();
+        images[i].sampler = sampler ? sampler->handle() : defaultSampler();
         continue;
       }
       case RegisterClass::ShaderResource:

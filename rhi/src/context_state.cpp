@@ -4,6 +4,7 @@
 
 #include "context.h"
 #include "pipelines.h"
+#include "queries.h"
 #include "resources.h"
 #include "shaders.h"
 #include "state_objects.h"
@@ -11,7 +12,10 @@
 
 namespace rhi::vk {
 
-ContextImpl::ContextImpl(DeviceImpl* device) : device_(device) {}
+ContextImpl::ContextImpl(DeviceImpl* device)
+    : device_(device), queries_(std::make_unique<QueryTracker>(device->gpu())) {
+  queries_->statistics = SupportedStatistics(device->gpu().Caps());
+}
 
 ContextImpl::~ContextImpl() {
   VkDevice vkDevice = device_->gpu().Device();
@@ -52,7 +56,7 @@ void ContextImpl::IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY Topology) {
 
 void ContextImpl::SetShader(ShaderStage stage, DeviceChild* object, std::shared_ptr<const ShaderCode> code) {
   StageState& state = stages_[static_cast<uint32_t>(stage)];
-  state.shaderObject = object;
+  state.shaderObject = dynamic_cast<Bindable*>(object);
   state.shader = std::move(code);
   descriptorsDirty_ = true;
 }
@@ -90,7 +94,8 @@ void ContextImpl::SetShaderResources(ShaderStage stage, UINT start, UINT count,
 
 void ContextImpl::SetSamplers(ShaderStage stage, UINT start, UINT count, SamplerState* const* samplers) {
   auto& slots = stages_[static_cast<uint32_t>(stage)].samplers;
-  for (UINT i = 0; i < count && start + i < slots.size(); ++i) slots[start + i] = samplers ? samplers[i] : nullptr;
+  for (UINT i = 0; i < count && start + i < slots.size(); ++i)
+    slots[start + i] = static_cast<SamplerStateImpl*>(samplers ? samplers[i] : nullptr);
   descriptorsDirty_ = true;
 }
 
@@ -126,7 +131,9 @@ void ContextImpl::SOGetTargets(UINT NumBuffers, Buffer** ppSOTargets) {
   }
 }
 
-void ContextImpl::RSSetState(RasterizerState* pRasterizerState) { rasterizer_ = pRasterizerState; }
+void ContextImpl::RSSetState(RasterizerState* pRasterizerState) {
+  rasterizer_ = static_cast<RasterizerStateImpl*>(pRasterizerState);
+}
 
 void ContextImpl::RSSetViewports(UINT NumViewports, const VIEWPORT* pViewports) {
   viewports_.assign(pViewports, pViewports + std::min(NumViewports, VIEWPORT_AND_SCISSORRECT_OBJECT_COUNT_PER_PIPELINE));
@@ -153,7 +160,7 @@ void ContextImpl::OMSetRenderTargets(UINT NumViews, RenderTargetView* const* ppR
 }
 
 void ContextImpl::OMSetBlendState(BlendState* pBlendState, const FLOAT BlendFactor[4], UINT SampleMask) {
-  blendState_ = pBlendState;
+  blendState_ = static_cast<BlendStateImpl*>(pBlendState);
   // D3D11: a NULL factor means (1,1,1,1).
   if (BlendFactor)
     std::copy(BlendFactor, BlendFactor + 4, blendFactor_.begin());
@@ -164,7 +171,7 @@ void ContextImpl::OMSetBlendState(BlendState* pBlendState, const FLOAT BlendFact
 }
 
 void ContextImpl::OMSetDepthStencilState(DepthStencilState* pDepthStencilState, UINT StencilRef) {
-  depthStencilState_ = pDepthStencilState;
+  depthStencilState_ = static_cast<DepthStencilStateImpl*>(pDepthStencilState);
   stencilRef_ = StencilRef;
   dynamicStateDirty_ = true;
 }

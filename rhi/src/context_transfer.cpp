@@ -394,12 +394,12 @@ void ContextImpl::Flush() {
   Gpu& gpu = device_->gpu();
   if (!gpu.HasPendingCommands()) return;
   EndRendering();
-  for (QueryImpl* query : activeQueries_) query->EndSegment(Commands());
+  queries_->Suspend(Commands());
   gpu.Submit();
   // A new command buffer starts with no state bound.
   boundPipeline_ = nullptr;
   dynamicStateDirty_ = descriptorsDirty_ = vertexBuffersDirty_ = true;
-  for (QueryImpl* query : activeQueries_) query->BeginSegment(Commands());
+  queries_->Resume(Commands());
 }
 
 }  // namespace rhi::vk

@@ -134,18 +134,20 @@ template <class Impl, class Interface, class Desc>
 HRESULT DeviceImpl::CreateDeduplicated(const Desc* desc, Interface** out) {
   if (!desc) return gpu_->Refuse("Create*State: the description is NULL");
   if (std::string reason = states::Validate(*desc); !reason.empty()) return gpu_->Refuse(reason);
-  const uint64_t hash = states::RawHash(*desc);
+  // D3D11 deduplicates by the normalised desc, and GetDesc reports that form.
+  const Desc normalized = states::Normalize(*desc);
+  const uint64_t hash = states::KeyHash(normalized);
   auto [first, last] = stateCache_.equal_range(hash);
   for (auto it = first; it != last; ++it) {
     auto* existing = static_cast<Impl*>(it->second);
-    if (states::RawEqual(existing->desc(), *desc)) {
+    if (states::KeyEqual(existing->desc(), normalized)) {
       existing->AddRef();
       *out = existing;
       return S_OK;
     }
   }
   ComPtr<Impl> created;
-  created.Attach(new Impl(this, *desc));
+  created.Attach(new Impl(this, normalized));
   if constexpr (std::is_same_v<Impl, SamplerStateImpl>) {
     if (HRESULT hr = created->Initialize(); FAILED(hr)) return hr;
   }

@@ -81,18 +81,50 @@ class DeviceImpl final : public Device {
   std::unique_ptr<PipelineCache> pipelines_;
   std::unique_ptr<ContextImpl> context_;
   uint64_t objectSerial_ = 0;
-  // D3D11 returns the existing object for a desc identical to an earlier one.
-  // Keyed by states::RawHash of the desc as given; values are weak.
+  // D3D11 returns the existing object for a desc equal to an earlier one once
+  // normalised. Keyed by states::KeyHash; values are weak.
   std::unordered_multimap<uint64_t, DeviceChild*> stateCache_;
 };
 
-// Unlike D3D11, a device child does not keep its device alive: the context's
-// bindings hold references to children, and children holding the device would
-// make every bound object a reference cycle. Release children before the device.
-template <class Interface>
-class DeviceChildImpl : public Interface {
+// What the context's bindings hold on an object: it stays alive while bound,
+// as in D3D11, without the binding keeping the device alive.
+class Bindable {
  public:
-  explicit DeviceChildImpl(DeviceImpl* device) : device_(device), serial_(device->NextSerial()) {}
+  virtual void Bind() = 0;
+  virtual void Unbind() = 0;
+
+ protected:
+  ~Bindable() = default;
+};
+
+// D3D11's lifetime rules for device children: an object lives while the
+// application holds a reference or the context binds it, and the application's
+// references keep the device alive. Bindings do not, so objects bound when the
+// device goes are released by the device's own ClearState, and bound objects
+// never form reference cycles with the device.
+template <class Interface>
+class DeviceChildImpl : public Interface, public Bindable {
+ public:
+  explicit DeviceChildImpl(DeviceImpl* device) : device_(device), serial_(device->NextSerial()) {
+    device_->AddRef();  // for the creator's reference
+  }
+  UINT AddRef() override {
+    if (references_++ == 0) device_->AddRef();
+    return references_;
+  }
+  UINT Release() override {
+    const UINT left = --references_;
+    if (left == 0) {
+      DeviceImpl* device = device_;
+      if (bindings_ == 0) delete this;
+      device->Release();
+    }
+    return left;
+  }
+  void Bind() override { ++bindings_; }
+  void Unbind() override {
+    if (--bindings_ == 0 && references_ == 0) delete this;
+  }
   void GetDevice(Device** ppDevice) override {
     device_->AddRef();
     *ppDevice = device_;
@@ -105,6 +137,35 @@ class DeviceChildImpl : public Interface {
  private:
   DeviceImpl* device_;
   uint64_t serial_;
+  UINT references_ = 1;
+  UINT bindings_ = 0;
+};
+
+// A context binding (see Bindable).
+template <class T>
+class Bound {
+ public:
+  Bound() = default;
+  Bound(T* object) : object_(object) {
+    if (object_) object_->Bind();
+  }
+  Bound(const Bound& other) : Bound(other.object_) {}
+  Bound& operator=(const Bound& other) {
+    Bound copy(other);
+    std::swap(object_, copy.object_);
+    return *this;
+  }
+  ~Bound() { Reset(); }
+  void Reset() {
+    if (T* object = std::exchange(object_, nullptr)) object->Unbind();
+  }
+  T* Get() const { return object_; }
+  T* operator->() const { return object_; }
+  T& operator*() const { return *object_; }
+  explicit operator bool() const { return object_ != nullptr; }
+
+ private:
+  T* object_ = nullptr;
 };
 
 }  // namespace rhi::vk

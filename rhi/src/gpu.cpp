@@ -31,6 +31,9 @@ namespace {
 
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 
+// DEVICE_OPTIONS::InstanceExtensions, handed from Create to CreateInstance.
+thread_local std::vector<const char*> tInstanceExtensions;
+
 bool EnvFlag(const char* name) {
   const char* value = std::getenv(name);
   return value && value[0] == '1';
@@ -74,6 +77,7 @@ HRESULT Gpu::Create(const DEVICE_OPTIONS& options, std::unique_ptr<Gpu>* out) {
   const bool validation = options.EnableValidation || EnvFlag("RHI_VALIDATION");
 #endif
   const char* wanted = options.AdapterName ? options.AdapterName : std::getenv("RHI_DEVICE");
+  tInstanceExtensions.assign(options.InstanceExtensions, options.InstanceExtensions + options.InstanceExtensionCount);
   HRESULT hr = gpu->CreateInstance(validation);
   if (SUCCEEDED(hr)) hr = gpu->PickPhysicalDevice(wanted);
   if (SUCCEEDED(hr)) hr = gpu->CreateLogicalDevice();
@@ -95,7 +99,7 @@ HRESULT Gpu::CreateInstance(bool validation) {
   app.apiVersion = VK_API_VERSION_1_3;
 
   std::vector<const char*> layers;
-  std::vector<const char*> extensions;
+  std::vector<const char*> extensions = tInstanceExtensions;
   if (validation) {
     layers.push_back(kValidationLayer);
     extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
@@ -224,6 +228,7 @@ HRESULT Gpu::CreateLogicalDevice() {
     *tail = &feature;
     tail = &feature.pNext;
   };
+  enableIfPresent(VK_KHR_SWAPCHAIN_EXTENSION_NAME);  // for rhi/swap_chain.h
   chainIf(enableIfPresent(VK_EXT_TRANSFORM_FEEDBACK_EXTENSION_NAME), xfb);
   chainIf(enableIfPresent(VK_EXT_ROBUSTNESS_2_EXTENSION_NAME), robustness);
   chainIf(enableIfPresent(VK_EXT_CUSTOM_BORDER_COLOR_EXTENSION_NAME), border);

@@ -1,6 +1,7 @@
 #include "queries.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstring>
 
 #include "context.h"
@@ -29,6 +30,17 @@ constexpr VkQueryPipelineStatisticFlags kAllStatistics =
 
 }  // namespace
 
+VkQueryPipelineStatisticFlags SupportedStatistics(const GpuCapabilities& caps) {
+  VkQueryPipelineStatisticFlags flags = kAllStatistics;
+  if (!caps.tessellationShader)
+    flags &= ~(VK_QUERY_PIPELINE_STATISTIC_TESSELLATION_CONTROL_SHADER_PATCHES_BIT |
+               VK_QUERY_PIPELINE_STATISTIC_TESSELLATION_EVALUATION_SHADER_INVOCATIONS_BIT);
+  return flags;
+}
+
+// ---------------------------------------------------------------------------
+// Queries
+
 HRESULT QueryImpl::Create(DeviceImpl* device, const QUERY_DESC& desc, QueryImpl** out) {
   Gpu& gpu = device->gpu();
   if (desc.Query > QUERY_SO_OVERFLOW_PREDICATE_STREAM3)
@@ -46,40 +58,49 @@ HRESULT QueryImpl::Create(DeviceImpl* device, const QUERY_DESC& desc, QueryImpl*
 
 HRESULT QueryImpl::Initialize() {
   const GpuCapabilities& caps = gpu().Caps();
+  const uint32_t streams = std::max(1u, caps.maxTransformFeedbackStreams);
   switch (desc_.Query) {
-    case QUERY_OCCLUSION:
-    case QUERY_OCCLUSION_PREDICATE: type_ = VK_QUERY_TYPE_OCCLUSION; break;
-    case QUERY_TIMESTAMP: type_ = VK_QUERY_TYPE_TIMESTAMP; break;
-    case QUERY_PIPELINE_STATISTICS: {
-      type_ = VK_QUERY_TYPE_PIPELINE_STATISTICS;
-      statistics_ = kAllStatistics;
-      if (!caps.tessellationShader)
-        statistics_ &= ~(VK_QUERY_PIPELINE_STATISTIC_TESSELLATION_CONTROL_SHADER_PATCHES_BIT |
-                         VK_QUERY_PIPELINE_STATISTIC_TESSELLATION_EVALUATION_SHADER_INVOCATIONS_BIT);
-      valuesPerQuery_ = static_cast<uint32_t>(std::popcount(statistics_));
+    case QUERY_EVENT:
+    case QUERY_TIMESTAMP_DISJOINT: break;
+    case QUERY_TIMESTAMP: {
+      VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+      info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+      info.queryCount = 1;
+      vkCreateQueryPool(gpu().Device(), &info, nullptr, &timestampPool);
       break;
     }
-    default:
-      if (IsStreamOutQuery(desc_.Query)) {
-        type_ = VK_QUERY_TYPE_TRANSFORM_FEEDBACK_STREAM_EXT;
-        valuesPerQuery_ = 2;  // primitives written, primitives needed
-        if (desc_.Query >= QUERY_SO_STATISTICS_STREAM0)
-          firstStream_ = (desc_.Query - QUERY_SO_STATISTICS_STREAM0) % 4;
-        if (firstStream_ >= std::max(1u, caps.maxTransformFeedbackStreams))
-          return gpu().Refuse("CreateQuery: stream " + std::to_string(firstStream_) + " is beyond the " +
-                              std::to_string(caps.maxTransformFeedbackStreams) + " streams of " + gpu().AdapterName());
-      }
+    case QUERY_OCCLUSION:
+    case QUERY_OCCLUSION_PREDICATE: kinds_ = {{VK_QUERY_TYPE_OCCLUSION, 0}}; break;
+    case QUERY_PIPELINE_STATISTICS:
+      kinds_ = {{VK_QUERY_TYPE_PIPELINE_STATISTICS, 0}};
+      statistics_ = SupportedStatistics(caps);
       break;
+    case QUERY_SO_OVERFLOW_PREDICATE:
+      // "Any stream": one Vulkan query per stream the device captures.
+      for (uint32_t stream = 0; stream < streams; ++stream)
+        kinds_.push_back({VK_QUERY_TYPE_TRANSFORM_FEEDBACK_STREAM_EXT, stream});
+      break;
+    default: {
+      // SO_STATISTICS reports stream 0, as D3D10's single stream did.
+      const uint32_t stream =
+          desc_.Query >= QUERY_SO_STATISTICS_STREAM0 ? (desc_.Query - QUERY_SO_STATISTICS_STREAM0) % 4 : 0;
+      if (stream >= streams)
+        return gpu().Refuse("CreateQuery: stream " + std::to_string(stream) + " is beyond the " +
+                            std::to_string(streams) + " stream(s) of " + gpu().AdapterName());
+      kinds_ = {{VK_QUERY_TYPE_TRANSFORM_FEEDBACK_STREAM_EXT, stream}};
+      break;
+    }
   }
+  segments.resize(kinds_.size());
   return S_OK;
 }
 
 QueryImpl::~QueryImpl() {
+  if (active) device().context().ForgetQuery(*this);
+  segments.clear();
   VkDevice vkDevice = gpu().Device();
-  auto pools = pools_;
-  gpu().DeferDestroy([=] {
-    for (VkQueryPool pool : pools) vkDestroyQueryPool(vkDevice, pool, nullptr);
-  });
+  VkQueryPool pool = timestampPool;
+  gpu().DeferDestroy([=] { vkDestroyQueryPool(vkDevice, pool, nullptr); });
 }
 
 UINT QueryImpl::GetDataSize() {
@@ -99,92 +120,13 @@ UINT QueryImpl::GetDataSize() {
   }
 }
 
-bool QueryImpl::UsesVulkanQueries() const {
-  return desc_.Query != QUERY_EVENT && desc_.Query != QUERY_TIMESTAMP_DISJOINT;
-}
-
-uint32_t QueryImpl::QueriesPerSegment() const {
-  if (desc_.Query == QUERY_SO_OVERFLOW_PREDICATE) return std::max(1u, gpu().Caps().maxTransformFeedbackStreams);
-  return 1;
-}
-
-VkQueryPool QueryImpl::SegmentPool(uint32_t segment) {
-  while (pools_.size() <= segment) {
-    VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-    info.queryType = type_;
-    info.queryCount = QueriesPerSegment();
-    info.pipelineStatistics = statistics_;
-    VkQueryPool pool = VK_NULL_HANDLE;
-    vkCreateQueryPool(gpu().Device(), &info, nullptr, &pool);
-    pools_.push_back(pool);
-  }
-  return pools_[segment];
-}
-
-void QueryImpl::BeginVulkanQueries(VkCommandBuffer commands) {
-  VkQueryPool pool = SegmentPool(segments_);
-  vkCmdResetQueryPool(commands, pool, 0, QueriesPerSegment());
-  if (type_ == VK_QUERY_TYPE_TRANSFORM_FEEDBACK_STREAM_EXT) {
-    for (uint32_t i = 0; i < QueriesPerSegment(); ++i)
-      gpu().vkCmdBeginQueryIndexedEXT(commands, pool, i, 0, firstStream_ + i);
-  } else {
-    VkQueryControlFlags flags = desc_.Query == QUERY_OCCLUSION ? VK_QUERY_CONTROL_PRECISE_BIT : 0;
-    vkCmdBeginQuery(commands, pool, 0, flags);
-  }
-  ++segments_;
-}
-
-void QueryImpl::EndVulkanQueries(VkCommandBuffer commands) {
-  VkQueryPool pool = pools_[segments_ - 1];
-  if (type_ == VK_QUERY_TYPE_TRANSFORM_FEEDBACK_STREAM_EXT) {
-    for (uint32_t i = 0; i < QueriesPerSegment(); ++i)
-      gpu().vkCmdEndQueryIndexedEXT(commands, pool, i, firstStream_ + i);
-  } else {
-    vkCmdEndQuery(commands, pool, 0);
-  }
-}
-
-void QueryImpl::Begin(VkCommandBuffer commands) {
-  // D3D11: Begin on an active query restarts it; timestamps and events have no Begin.
-  if (desc_.Query == QUERY_TIMESTAMP || desc_.Query == QUERY_EVENT) return;
-  if (active_ && UsesVulkanQueries()) EndVulkanQueries(commands);
-  segments_ = 0;
-  issued_ = false;
-  active_ = true;
-  if (UsesVulkanQueries()) BeginVulkanQueries(commands);
-}
-
-void QueryImpl::End(VkCommandBuffer commands, uint64_t serial) {
-  if (desc_.Query == QUERY_TIMESTAMP) {
-    segments_ = 0;
-    VkQueryPool pool = SegmentPool(0);
-    vkCmdResetQueryPool(commands, pool, 0, 1);
-    vkCmdWriteTimestamp2(commands, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool, 0);
-    segments_ = 1;
-  } else if (active_ && UsesVulkanQueries()) {
-    EndVulkanQueries(commands);
-  }
-  active_ = false;
-  issued_ = true;
-  endSerial_ = serial;
-}
-
-void QueryImpl::EndSegment(VkCommandBuffer commands) {
-  if (UsesVulkanQueries()) EndVulkanQueries(commands);
-}
-
-void QueryImpl::BeginSegment(VkCommandBuffer commands) {
-  if (UsesVulkanQueries()) BeginVulkanQueries(commands);
-}
-
-bool QueryImpl::ReadResults(std::vector<uint64_t>* sums) {
-  const uint32_t perQuery = valuesPerQuery_;
-  const uint32_t queries = QueriesPerSegment();
-  sums->assign(static_cast<size_t>(perQuery) * queries, 0);
-  std::vector<uint64_t> values(sums->size());
-  for (uint32_t s = 0; s < segments_; ++s) {
-    VkResult result = vkGetQueryPoolResults(gpu().Device(), pools_[s], 0, queries, values.size() * sizeof(uint64_t),
-                                            values.data(), perQuery * sizeof(uint64_t), VK_QUERY_RESULT_64_BIT);
+bool QueryImpl::SumResults(size_t kind, uint32_t valuesPerQuery, std::vector<uint64_t>* sums) {
+  sums->assign(valuesPerQuery, 0);
+  std::vector<uint64_t> values(valuesPerQuery);
+  for (const auto& segment : segments[kind]) {
+    VkResult result =
+        vkGetQueryPoolResults(gpu().Device(), segment->pool, 0, 1, values.size() * sizeof(uint64_t), values.data(),
+                              values.size() * sizeof(uint64_t), VK_QUERY_RESULT_64_BIT);
     if (result != VK_SUCCESS) return false;
     for (size_t i = 0; i < values.size(); ++i) (*sums)[i] += values[i];
   }
@@ -192,23 +134,25 @@ bool QueryImpl::ReadResults(std::vector<uint64_t>* sums) {
 }
 
 HRESULT QueryImpl::GetData(void* data, UINT size, UINT flags, ContextImpl& context) {
-  if (data && size != GetDataSize()) {
+  if (data && size != GetDataSize())
     return gpu().Refuse("GetData: DataSize " + std::to_string(size) + " does not match GetDataSize() " +
                         std::to_string(GetDataSize()));
-  }
-  if (active_ || !issued_) return gpu().Refuse("GetData: the query has not been ended since its last Begin");
-  if (!gpu().IsComplete(endSerial_)) {
-    if (endSerial_ == gpu().RecordingSerial() && !(flags & ASYNC_GETDATA_DONOTFLUSH)) context.Flush();
+  if (active || !issued) return gpu().Refuse("GetData: the query has not been ended since its last Begin");
+  if (!gpu().IsComplete(endSerial)) {
+    if (endSerial == gpu().RecordingSerial() && !(flags & ASYNC_GETDATA_DONOTFLUSH)) context.Flush();
     return S_FALSE;
   }
   if (!data) return S_OK;
   std::vector<uint64_t> sums;
-  if (UsesVulkanQueries() && !ReadResults(&sums)) return S_FALSE;
   switch (desc_.Query) {
     case QUERY_EVENT: *static_cast<BOOL*>(data) = TRUE; break;
-    case QUERY_OCCLUSION:
-    case QUERY_TIMESTAMP: *static_cast<UINT64*>(data) = sums[0]; break;
-    case QUERY_OCCLUSION_PREDICATE: *static_cast<BOOL*>(data) = sums[0] != 0; break;
+    case QUERY_TIMESTAMP: {
+      uint64_t ticks = 0;
+      vkGetQueryPoolResults(gpu().Device(), timestampPool, 0, 1, sizeof ticks, &ticks, sizeof ticks,
+                            VK_QUERY_RESULT_64_BIT);
+      *static_cast<UINT64*>(data) = ticks;
+      break;
+    }
     case QUERY_TIMESTAMP_DISJOINT: {
       QUERY_DATA_TIMESTAMP_DISJOINT disjoint{};
       disjoint.Frequency = static_cast<UINT64>(1e9 / gpu().Caps().timestampPeriodNs);
@@ -216,7 +160,16 @@ HRESULT QueryImpl::GetData(void* data, UINT size, UINT flags, ContextImpl& conte
       std::memcpy(data, &disjoint, sizeof disjoint);
       break;
     }
+    case QUERY_OCCLUSION:
+    case QUERY_OCCLUSION_PREDICATE:
+      if (!SumResults(0, 1, &sums)) return S_FALSE;
+      if (desc_.Query == QUERY_OCCLUSION)
+        *static_cast<UINT64*>(data) = sums[0];
+      else
+        *static_cast<BOOL*>(data) = sums[0] != 0;
+      break;
     case QUERY_PIPELINE_STATISTICS: {
+      if (!SumResults(0, static_cast<uint32_t>(std::popcount(statistics_)), &sums)) return S_FALSE;
       QUERY_DATA_PIPELINE_STATISTICS stats{};
       UINT64* fields = &stats.IAVertices;
       size_t next = 0;
@@ -226,12 +179,16 @@ HRESULT QueryImpl::GetData(void* data, UINT size, UINT flags, ContextImpl& conte
       break;
     }
     default: {
-      // Per stream: [written, needed]; "any stream" predicates OR over the streams.
+      // Per stream: [primitives written, primitives needed].
       if (IsOverflowPredicate(desc_.Query)) {
         BOOL overflow = FALSE;
-        for (size_t i = 0; i + 1 < sums.size(); i += 2) overflow |= sums[i + 1] > sums[i];
+        for (size_t kind = 0; kind < kinds_.size(); ++kind) {
+          if (!SumResults(kind, 2, &sums)) return S_FALSE;
+          overflow |= sums[1] > sums[0];
+        }
         *static_cast<BOOL*>(data) = overflow;
       } else {
+        if (!SumResults(0, 2, &sums)) return S_FALSE;
         QUERY_DATA_SO_STATISTICS stats{sums[0], sums[1]};
         std::memcpy(data, &stats, sizeof stats);
       }
@@ -242,27 +199,120 @@ HRESULT QueryImpl::GetData(void* data, UINT size, UINT flags, ContextImpl& conte
 }
 
 // ---------------------------------------------------------------------------
+// Segments
+
+QuerySegment::~QuerySegment() {
+  if (tracker) tracker->Recycle(kind, pool);
+}
+
+QueryTracker::~QueryTracker() {
+  for (auto& [kind, pools] : freePools_)
+    for (VkQueryPool pool : pools) vkDestroyQueryPool(gpu_.Device(), pool, nullptr);
+}
+
+void QueryTracker::Open(const QueryKind& kind, KindState& state, VkCommandBuffer commands) {
+  auto segment = std::make_shared<QuerySegment>();
+  segment->kind = kind;
+  auto& free = freePools_[kind];
+  if (!free.empty()) {
+    segment->pool = free.back();
+    free.pop_back();
+  } else {
+    VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    info.queryType = kind.type;
+    info.queryCount = 1;
+    info.pipelineStatistics = kind.type == VK_QUERY_TYPE_PIPELINE_STATISTICS ? statistics : 0;
+    vkCreateQueryPool(gpu_.Device(), &info, nullptr, &segment->pool);
+  }
+  segment->tracker = this;
+  // Pools are reused; the reset is ordered after any earlier use by the queue.
+  vkCmdResetQueryPool(commands, segment->pool, 0, 1);
+  if (kind.type == VK_QUERY_TYPE_TRANSFORM_FEEDBACK_STREAM_EXT)
+    gpu_.vkCmdBeginQueryIndexedEXT(commands, segment->pool, 0, 0, kind.stream);
+  else
+    vkCmdBeginQuery(commands, segment->pool, 0,
+                    kind.type == VK_QUERY_TYPE_OCCLUSION ? VK_QUERY_CONTROL_PRECISE_BIT : 0);
+  state.open = std::move(segment);
+}
+
+void QueryTracker::Close(const QueryKind& kind, KindState& state, VkCommandBuffer commands) {
+  if (!state.open) return;
+  if (kind.type == VK_QUERY_TYPE_TRANSFORM_FEEDBACK_STREAM_EXT)
+    gpu_.vkCmdEndQueryIndexedEXT(commands, state.open->pool, 0, kind.stream);
+  else
+    vkCmdEndQuery(commands, state.open->pool, 0);
+  for (QueryImpl* query : state.active) {
+    const auto& kinds = query->kinds();
+    size_t index = std::find(kinds.begin(), kinds.end(), kind) - kinds.begin();
+    query->segments[index].push_back(state.open);
+  }
+  state.open.reset();
+}
+
+void QueryTracker::Begin(QueryImpl& query, VkCommandBuffer commands) {
+  // D3D11: Begin on an active query restarts it.
+  if (query.active) Leave(query, commands);
+  for (auto& list : query.segments) list.clear();
+  query.active = true;
+  query.issued = false;
+  for (const QueryKind& kind : query.kinds()) {
+    KindState& state = kinds_[kind];
+    Close(kind, state, commands);
+    state.active.push_back(&query);
+    Open(kind, state, commands);
+  }
+}
+
+void QueryTracker::Leave(QueryImpl& query, VkCommandBuffer commands) {
+  for (const QueryKind& kind : query.kinds()) {
+    KindState& state = kinds_[kind];
+    Close(kind, state, commands);
+    std::erase(state.active, &query);
+    if (!state.active.empty()) Open(kind, state, commands);
+  }
+  query.active = false;
+}
+
+void QueryTracker::End(QueryImpl& query, VkCommandBuffer commands) {
+  if (query.desc().Query == QUERY_TIMESTAMP) {
+    vkCmdResetQueryPool(commands, query.timestampPool, 0, 1);
+    vkCmdWriteTimestamp2(commands, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, query.timestampPool, 0);
+  }
+  if (query.active) Leave(query, commands);
+  query.issued = true;
+  query.endSerial = gpu_.RecordingSerial();
+}
+
+void QueryTracker::Forget(QueryImpl& query, VkCommandBuffer commands) { Leave(query, commands); }
+
+void QueryTracker::Suspend(VkCommandBuffer commands) {
+  for (auto& [kind, state] : kinds_) Close(kind, state, commands);
+}
+
+void QueryTracker::Resume(VkCommandBuffer commands) {
+  for (auto& [kind, state] : kinds_)
+    if (!state.active.empty()) Open(kind, state, commands);
+}
+
+// ---------------------------------------------------------------------------
 // The context's side
 
 void ContextImpl::Begin(Asynchronous* pAsync) {
   auto* query = static_cast<QueryImpl*>(pAsync);
+  // Timestamps and events have no Begin.
+  if (query->desc().Query == QUERY_TIMESTAMP || query->desc().Query == QUERY_EVENT) return;
   EndRendering();
-  query->Begin(Commands());
-  if (query->active() && std::find(activeQueries_.begin(), activeQueries_.end(), query) == activeQueries_.end()) {
-    query->AddRef();
-    activeQueries_.push_back(query);
-  }
+  queries_->Begin(*query, Commands());
 }
 
 void ContextImpl::End(Asynchronous* pAsync) {
-  auto* query = static_cast<QueryImpl*>(pAsync);
   EndRendering();
-  query->End(Commands(), device_->gpu().RecordingSerial());
-  auto it = std::find(activeQueries_.begin(), activeQueries_.end(), query);
-  if (it != activeQueries_.end()) {
-    activeQueries_.erase(it);
-    query->Release();
-  }
+  queries_->End(*static_cast<QueryImpl*>(pAsync), Commands());
+}
+
+void ContextImpl::ForgetQuery(QueryImpl& query) {
+  EndRendering();
+  queries_->Forget(query, Commands());
 }
 
 HRESULT ContextImpl::GetData(Asynchronous* pAsync, void* pData, UINT DataSize, UINT GetDataFlags) {

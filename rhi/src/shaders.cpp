@@ -206,7 +206,8 @@ HRESULT DeviceImpl::CreateInputLayout(const INPUT_ELEMENT_DESC* pInputElementDes
       FAILED(hr))
     return hr;
   // D3D11 refuses a layout that lacks an input the vertex shader reads.
-  auto layout = std::make_unique<InputLayoutImpl>(this, pInputElementDescs, NumElements);
+  ComPtr<InputLayoutImpl> layout;
+  layout.Attach(new InputLayoutImpl(this, pInputElementDescs, NumElements));
   for (const auto& input : vs->reflection.inputs) {
     if (!input.location || input.builtIn) continue;
     bool found = std::any_of(layout->elements().begin(), layout->elements().end(), [&](const INPUT_ELEMENT_DESC& e) {
@@ -216,7 +217,7 @@ HRESULT DeviceImpl::CreateInputLayout(const INPUT_ELEMENT_DESC* pInputElementDes
       return gpu_->Refuse(std::string(kCall) + ": the vertex shader reads " + input.Semantic() +
                           ", which no element provides");
   }
-  *ppInputLayout = layout.release();
+  *ppInputLayout = layout.Detach();
   return S_OK;
 }
 

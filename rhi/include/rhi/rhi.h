@@ -365,6 +365,10 @@ struct DEVICE_OPTIONS {
   // Receives every refusal reason (the D3D11 debug layer's role) and every
   // validation-layer message. Without one, errors go to stderr.
   MessageCallback OnMessage;
+  // Extra Vulkan instance extensions, e.g. the surface extensions a window system
+  // needs for rhi/swap_chain.h (glfwGetRequiredInstanceExtensions).
+  const char* const* InstanceExtensions = nullptr;
+  UINT InstanceExtensionCount = 0;
 };
 
 HRESULT CreateDevice(const DEVICE_OPTIONS* pOptions, Device** ppDevice, DeviceContext** ppImmediateContext);

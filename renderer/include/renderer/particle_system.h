@@ -1,0 +1,75 @@
+// The GPU particle system of document 000: particles live only on the GPU,
+// updated each frame by a geometry shader whose output is streamed into one of
+// two buffers (ping-pong), and drawn with DrawAuto because the CPU never knows
+// how many survived.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "renderer/particle_rule.h"
+#include "rhi/rhi.h"
+
+namespace renderer {
+
+struct ParticleSettings {
+  ParticleRule rule;
+  uint32_t capacity = 0;  // particles per buffer; 0: the most the rule can reach
+  glm::vec3 emitterCenter{0, 0, 0};
+  float emitterRadius = 2.0f;
+  glm::vec3 spread{0.3f, 0.1f, 0.3f};  // random initial velocity range (units per second)
+  float speedUp = 1.0f;
+  glm::vec3 acceleration{0.2f, 0.15f, 0.0f};  // wind and buoyancy
+  float secondsPerUpdate = 1.0f / 60.0f;
+  float size = 0.15f;
+};
+
+struct Camera {
+  glm::mat4 viewProj{1.0f};  // column-vector convention: clip = viewProj * world
+  glm::vec3 eye{0, 0, 0};
+};
+
+class ParticleSystem {
+ public:
+  static std::unique_ptr<ParticleSystem> Create(rhi::Device* device, const ParticleSettings& settings,
+                                                std::string* error);
+
+  // One update pass: the current buffer in, the other out through stream output.
+  void Update(rhi::DeviceContext* context);
+  // Billboards of the live particles with DrawAuto; blend, depth and targets are the caller's.
+  void Draw(rhi::DeviceContext* context, const Camera& camera);
+
+  // The buffer the last update wrote (what Draw draws).
+  rhi::Buffer* current() const { return buffers_[current_].Get(); }
+  uint32_t updates() const { return updates_; }
+  uint32_t capacity() const { return capacity_; }
+  const ParticleSettings& settings() const { return settings_; }
+
+ private:
+  ParticleSystem() = default;
+  bool Initialize(rhi::Device* device, const ParticleSettings& settings, std::string* error);
+  void BindParticleInput(rhi::DeviceContext* context, rhi::Buffer* buffer);
+
+  ParticleSettings settings_;
+  uint32_t capacity_ = 0;
+  uint32_t updates_ = 0;
+  uint32_t current_ = 0;
+  rhi::ComPtr<rhi::Buffer> emitters_;
+  std::array<rhi::ComPtr<rhi::Buffer>, 2> buffers_;
+  rhi::ComPtr<rhi::Buffer> updateParams_, drawParams_;
+  rhi::ComPtr<rhi::InputLayout> layout_;
+  rhi::ComPtr<rhi::VertexShader> passThrough_, particleVs_;
+  rhi::ComPtr<rhi::GeometryShader> update_, billboard_;
+  rhi::ComPtr<rhi::PixelShader> smoke_;
+  rhi::ComPtr<rhi::DepthStencilState> noDepth_;
+  rhi::ComPtr<rhi::ShaderResourceView> puff_;
+  rhi::ComPtr<rhi::SamplerState> linear_;
+};
+
+// Bytes per particle in the stream-output buffers.
+inline constexpr uint32_t kParticleStride = 40;
+
+}  // namespace renderer

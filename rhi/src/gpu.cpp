@@ -228,7 +228,9 @@ HRESULT Gpu::CreateLogicalDevice() {
     *tail = &feature;
     tail = &feature.pNext;
   };
-  enableIfPresent(VK_KHR_SWAPCHAIN_EXTENSION_NAME);  // for rhi/swap_chain.h
+  // rhi/swap_chain.h; VK_KHR_swapchain needs the instance's VK_KHR_surface.
+  for (const char* name : tInstanceExtensions)
+    if (std::strcmp(name, VK_KHR_SURFACE_EXTENSION_NAME) == 0) enableIfPresent(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
   chainIf(enableIfPresent(VK_EXT_TRANSFORM_FEEDBACK_EXTENSION_NAME), xfb);
   chainIf(enableIfPresent(VK_EXT_ROBUSTNESS_2_EXTENSION_NAME), robustness);
   chainIf(enableIfPresent(VK_EXT_CUSTOM_BORDER_COLOR_EXTENSION_NAME), border);

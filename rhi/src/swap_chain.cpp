@@ -313,7 +313,7 @@ HRESULT SwapChainImpl::Present(UINT SyncInterval, UINT Flags) {
   context.EndRendering();
   context.Use(*back, uses::kTransferRead);
   context.FlushBarriers();
-  g.Submit();
+  context.Flush();  // submits, and forgets the state bound in the old command buffer
 
   const uint32_t frame = frame_;
   vkWaitForFences(g.Device(), 1, &fences_[frame], VK_TRUE, UINT64_MAX);

@@ -1,0 +1,53 @@
+// SPEC.md doc 000 tables 1-4 as a GPU fixture: overlapping translucent layers
+// rendered through each table's exact passes, and the same passes on the CPU
+// through rhi::reference::BlendResult.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "conformance_gpu.h"
+#include "rhi_reference/formats.h"
+
+namespace conf {
+
+enum class OitMethod { Wboit /*Tables 1+2*/, ColoredLiteral /*3 + 4 as printed*/, ColoredCorrected /*3 + corrected 4*/ };
+const char* OitMethodName(OitMethod method);
+
+struct OitLayer {
+  std::array<float, 4> color;  // straight rgb + alpha
+  std::array<float, 3> transmission;  // t.rgb (coloured OIT)
+  float depth;
+};
+
+constexpr int kOitLayers = 4;
+constexpr int kOitPixels = 16;  // a 4x4 target, one layer stack per pixel
+
+struct OitScene {
+  std::array<std::array<OitLayer, kOitLayers>, kOitPixels> layers;  // [pixel][draw order]
+  std::array<std::array<float, 4>, kOitPixels> background;          // the opaque frame
+};
+// Pixel 0: red a=.5 z=.2, green a=.4 z=.5, blue a=.6 z=.8, white a=.3 z=.35 over grey;
+// the rest seeded random (a in [0.1, 0.9], z in [0.05, 0.95]).
+OitScene MakeOitScene(uint32_t seed);
+
+struct OitPixelResult {
+  rhi::reference::StoredColor gpuAccum, gpuRevealage, gpuFrame;     // GPU
+  rhi::reference::StoredColor modelAccum, modelRevealage, modelFrame; // CPU model, whole chain
+  rhi::reference::StoredColor stageFrame;  // CPU compose fed with the GPU's accum/revealage (and frame)
+  rhi::reference::StoredColor over;        // sorted back-to-front OVER (straight alpha)
+  std::array<float, 3> intent;             // the method's formula in double precision, linear [0,1]
+};
+
+struct OitResult {
+  OitMethod method;
+  std::array<OitPixelResult, kOitPixels> pixels;
+  // Largest distances in steps (max over pixels and channels).
+  uint32_t accumSteps = 0, revealageSteps = 0, stageSteps = 0, chainSteps = 0, overSteps = 0, intentSteps = 0;
+  std::vector<std::string> validation, refusals;
+};
+
+OitResult RunOitFixture(Gpu& gpu, OitMethod method, const OitScene& scene);
+
+}  // namespace conf

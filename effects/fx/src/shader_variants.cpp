@@ -1,0 +1,157 @@
+// Functions, and the entry-point variants that bind `uniform` parameters.
+//
+// fxc compiles `CompileShader(ps_5_0, PSMain(true, 3))` by treating the listed
+// arguments as compile-time values of PSMain's uniform parameters. glslang has
+// no such notion, so each distinct argument list gets a wrapper appended to the
+// HLSL:
+//     [attributes of PSMain]
+//     float4 fx_variant_0(PSIn input) : SV_Target { return PSMain(input, (true), (3)); }
+// It keeps PSMain's other parameters with their semantics, so its signature
+// is what fxc would have compiled. The `uniform` keywords themselves are blanked
+// from the HLSL: the original function becomes an ordinary one.
+#include "effect_parser_impl.h"
+
+namespace fx {
+namespace {
+
+std::string Join(const std::vector<std::string>& parts, const char* separator) {
+  std::string s;
+  for (size_t i = 0; i < parts.size(); ++i) s += (i ? separator : "") + parts[i];
+  return s;
+}
+
+}  // namespace
+
+// `spec` has been read; pos_ is at the function's name.
+void EffectParser::ParseFunction(const DeclSpec& spec, size_t attributesStart) {
+  FunctionInfo f;
+  if (attributesStart < spec.start) f.attributes = Spell(attributesStart, spec.start);
+  f.returnType = Spell(spec.typeToken, pos_);
+  const Token& name = Take();
+  f.name = name.text;
+  f.where = name.where;
+  size_t open = pos_;
+  size_t close = SkipBalanced();
+  // Split at top-level commas; `InputPatch<HSIn, 3>` has one inside angle brackets.
+  int depth = 0, angle = 0;
+  size_t begin = open + 1;
+  for (size_t i = open + 1; i <= close; ++i) {
+    const Token& t = t_[i];
+    if (i == close || (t.kind == TokenKind::Punctuator && t.text == "," && depth == 0 && angle == 0)) {
+      ParseParameter(f, begin, i);
+      begin = i + 1;
+      continue;
+    }
+    if (t.kind != TokenKind::Punctuator) continue;
+    if (t.text == "(" || t.text == "[" || t.text == "{") ++depth;
+    if (t.text == ")" || t.text == "]" || t.text == "}") --depth;
+    if (t.text == "<") ++angle;
+    if (t.text == ">") angle = std::max(0, angle - 1);
+    if (t.text == ">>") angle = std::max(0, angle - 2);
+  }
+  if (Accept(":")) f.semantic = ExpectIdentifier("a semantic").text;
+  if (IsPunct(0, "{")) {
+    SkipBalanced();
+    functions_[f.name].push_back(std::move(f));
+  } else {
+    Expect(";", "after the function declaration");
+  }
+}
+
+void EffectParser::ParseParameter(FunctionInfo& f, size_t begin, size_t end) {
+  if (begin == end || (end - begin == 1 && IsIdentAt(begin, "void"))) return;
+  size_t declEnd = end, stop = end;
+  int depth = 0;
+  for (size_t i = begin; i < end; ++i) {
+    const Token& t = t_[i];
+    if (t.kind != TokenKind::Punctuator) continue;
+    if (depth == 0 && (t.text == ":" || t.text == "[") && stop == end) stop = i;
+    if (depth == 0 && t.text == "=") {
+      declEnd = i;
+      break;
+    }
+    if (t.text == "(" || t.text == "[" || t.text == "{") ++depth;
+    if (t.text == ")" || t.text == "]" || t.text == "}") --depth;
+  }
+  stop = std::min(stop, declEnd);
+  FunctionInfo::Param p;
+  p.text = Spell(begin, declEnd);
+  if (declEnd < end) p.defaultValue = Spell(declEnd + 1, end);
+  for (size_t i = begin; i < declEnd; ++i) {
+    if (!IsIdentAt(i, "uniform")) continue;
+    // Only fxc's CompileShader binding gives it meaning, and the variants do that now.
+    p.uniform = true;
+    Blank(i, i);
+  }
+  if (stop > begin && t_[stop - 1].kind == TokenKind::Identifier) p.name = t_[stop - 1].text;
+  if (p.name.empty()) Fatal(t_[begin], "cannot read the parameter '" + p.text + "'");
+  f.params.push_back(std::move(p));
+}
+
+bool EffectParser::IsIdentAt(size_t index, std::string_view name) const {
+  return index < t_.size() && t_[index].kind == TokenKind::Identifier && t_[index].text == name;
+}
+
+std::string EffectParser::EntryPointFor(const Token& at, const std::string& function, std::vector<std::string>& args) {
+  auto it = functions_.find(function);
+  if (it == functions_.end()) Fatal(at, "unknown shader function '" + function + "'");
+  // The first overload whose uniform parameters the arguments can bind.
+  const FunctionInfo* chosen = nullptr;
+  size_t overload = 0;
+  std::vector<const FunctionInfo::Param*> uniforms;
+  std::string problem;
+  for (size_t i = 0; i < it->second.size() && !chosen; ++i) {
+    const FunctionInfo& f = it->second[i];
+    uniforms.clear();
+    for (const FunctionInfo::Param& p : f.params) {
+      if (p.uniform) uniforms.push_back(&p);
+    }
+    if (args.size() > uniforms.size()) {
+      problem = "'" + function + "' has " + std::to_string(uniforms.size()) + " uniform parameter(s), but " +
+                std::to_string(args.size()) + " argument(s) are given";
+      continue;
+    }
+    auto missing = std::find_if(uniforms.begin() + static_cast<std::ptrdiff_t>(args.size()), uniforms.end(),
+                                [](const FunctionInfo::Param* p) { return p->defaultValue.empty(); });
+    if (missing != uniforms.end()) {
+      problem = "no value for uniform parameter '" + (*missing)->name + "' of '" + function + "'";
+      continue;
+    }
+    chosen = &f;
+    overload = i;
+  }
+  if (!chosen) Fatal(at, problem);
+  if (uniforms.empty()) return function;
+  for (size_t i = args.size(); i < uniforms.size(); ++i) args.push_back(uniforms[i]->defaultValue);
+
+  std::string key = function + "#" + std::to_string(overload) + "(" + Join(args, ",") + ")";
+  auto found = variants_.find(key);
+  if (found != variants_.end()) return found->second;
+  std::string name = "fx_variant_" + std::to_string(variants_.size());
+  std::vector<std::string> params, call;
+  size_t next = 0;
+  for (const FunctionInfo::Param& p : chosen->params) {
+    if (p.uniform) {
+      call.push_back("(" + args[next++] + ")");
+    } else {
+      params.push_back(p.text);
+      call.push_back(p.name);
+    }
+  }
+  std::string code = "// " + name + ": " + function + "(" + Join(args, ", ") + ")\n";
+  if (!chosen->attributes.empty()) code += chosen->attributes + "\n";
+  code += chosen->returnType + " " + name + "(" + Join(params, ", ") + ")";
+  if (!chosen->semantic.empty()) code += " : " + chosen->semantic;
+  code += "\n{\n    " + std::string(chosen->returnType == "void" ? "" : "return ") + function + "(" +
+          Join(call, ", ") + ");\n}\n";
+  variantCode_.push_back(std::move(code));
+  variants_.emplace(std::move(key), name);
+  return name;
+}
+
+std::string EffectParser::VariantSource() const {
+  if (variantCode_.empty()) return "";
+  return "\n#line 1 \"fx_variants\"\n" + Join(variantCode_, "");
+}
+
+}  // namespace fx

@@ -1,0 +1,351 @@
+// The compile pipeline: glslang HLSL front end with D3D register mapping,
+// SPIR-V generation, SPIRV-Tools legalization and validation, and turning
+// glslang's info log into Diagnostics.
+
+#include <glslang/MachineIndependent/localintermediate.h>
+#include <glslang/Public/ResourceLimits.h>
+#include <glslang/Public/ShaderLang.h>
+#include <glslang/SPIRV/GlslangToSpv.h>
+
+#include <rhi/shader_bindings.h>
+#include <algorithm>
+#include <cctype>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <list>
+#include <mutex>
+#include <regex>
+#include <spirv-tools/libspirv.hpp>
+#include <spirv-tools/optimizer.hpp>
+#include <sstream>
+
+#include "internal.h"
+
+namespace hlsl::detail {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr char kSpirvEntryPoint[] = "main";
+constexpr uint32_t kOpEntryPoint = 15;
+constexpr char kPreambleName[] = "<defines>";
+
+// --- Diagnostics
+
+bool IsIdentifierChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+
+std::string LineOf(const std::string& text, int line) {
+  std::istringstream in(text);
+  std::string current;
+  for (int i = 1; std::getline(in, current); ++i) {
+    if (i == line) return current;
+  }
+  return {};
+}
+
+// 1-based column of the n-th (0-based) occurrence of token on the line, as a
+// whole word when the token is an identifier; 0 when there is none.
+int FindColumn(const std::string& lineText, const std::string& token, int occurrence) {
+  if (token.empty()) return 0;
+  const bool word = std::all_of(token.begin(), token.end(), IsIdentifierChar);
+  for (size_t at = lineText.find(token); at != std::string::npos; at = lineText.find(token, at + 1)) {
+    const size_t end = at + token.size();
+    const bool whole = (at == 0 || !IsIdentifierChar(lineText[at - 1])) &&
+                       (end == lineText.size() || !IsIdentifierChar(lineText[end]));
+    if (word && !whole) continue;
+    if (occurrence-- == 0) return static_cast<int>(at) + 1;
+  }
+  return 0;
+}
+
+// glslang 12 tracks columns but prints only the line, so find the token the
+// message quotes on that line. Repeated errors for one token on one line
+// (x = y + y) map to successive occurrences.
+int RecoverColumn(const Diagnostic& d, const std::vector<Diagnostic>& earlier, const SourceFiles& files) {
+  static const std::regex kQuoted(R"(^'([^']*)' :)");
+  std::smatch quoted;
+  const auto file = files.find(d.file);
+  if (d.line <= 0 || file == files.end() || !std::regex_search(d.message, quoted, kQuoted)) return 0;
+  const std::string token = quoted[1];
+  const auto same = std::count_if(earlier.begin(), earlier.end(), [&](const Diagnostic& e) {
+    return e.file == d.file && e.line == d.line && e.message.starts_with(quoted[0].str());
+  });
+  return FindColumn(LineOf(file->second, d.line), token, static_cast<int>(same));
+}
+
+// Unlocated entries (link errors) are attributed to mainFile.
+void ParseInfoLog(const std::string& log, const std::string& mainFile, const SourceFiles& files,
+                  std::vector<Diagnostic>& errors, std::vector<Diagnostic>& warnings) {
+  static const std::regex kEntry(R"(^(ERROR|WARNING|INTERNAL ERROR|UNIMPLEMENTED): (.*)$)");
+  static const std::regex kLocated(R"(^(.*?):(\d{1,9}): (.*)$)");
+  static const std::regex kSummary(R"(^\d+ compilation errors\.)");
+  std::istringstream in(log);
+  for (std::string line; std::getline(in, line);) {
+    std::smatch entry, located;
+    if (!std::regex_match(line, entry, kEntry)) continue;
+    const std::string body = entry[2];
+    if (std::regex_search(body, kSummary)) continue;  // "1 compilation errors.  No code generated."
+    Diagnostic d{mainFile, 0, 0, body};
+    if (std::regex_match(body, located, kLocated)) d = {located[1], std::stoi(located[2]), 0, located[3]};
+    if (d.file == "-1") d.file = kPreambleName;  // glslang's name for the preamble string
+    while (!d.message.empty() && std::isspace(static_cast<unsigned char>(d.message.back()))) d.message.pop_back();
+    auto& sink = entry[1] == "WARNING" ? warnings : errors;
+    d.column = RecoverColumn(d, sink, files);
+    sink.push_back(std::move(d));
+  }
+}
+
+// --- Pipeline
+
+void EnsureGlslangInitialized() {
+  // glslang keeps process-wide tables; they must be built once, before any
+  // TShader exists, and never torn down while another thread compiles.
+  static std::once_flag once;
+  std::call_once(once, [] { glslang::InitializeProcess(); });
+}
+
+EShLanguage ToGlslang(Stage stage) {
+  switch (stage) {
+    case Stage::Vertex: return EShLangVertex;
+    case Stage::Hull: return EShLangTessControl;
+    case Stage::Domain: return EShLangTessEvaluation;
+    case Stage::Geometry: return EShLangGeometry;
+    case Stage::Pixel: return EShLangFragment;
+    case Stage::Compute: return EShLangCompute;
+  }
+  return EShLangVertex;
+}
+
+// Resolves "file.h" relative to the including file, then through includeDirs
+// (glslang tries includeLocal first and falls back to includeSystem). Every
+// file read is recorded in `files` so diagnostics can quote it later.
+class Includer final : public glslang::TShader::Includer {
+ public:
+  Includer(const std::vector<std::string>& includeDirs, SourceFiles& files)
+      : includeDirs_(includeDirs), files_(files) {}
+
+  IncludeResult* includeLocal(const char* header, const char* includer, size_t) override {
+    return TryOpen(fs::path(includer).parent_path() / header);
+  }
+
+  IncludeResult* includeSystem(const char* header, const char*, size_t) override {
+    for (const std::string& dir : includeDirs_) {
+      if (IncludeResult* found = TryOpen(fs::path(dir) / header)) return found;
+    }
+    // An empty headerName tells glslang the include failed; headerData is the reason.
+    std::string& reason = messages_.emplace_back("cannot open include file (searched the including file's folder");
+    for (const std::string& dir : includeDirs_) reason += ", " + dir;
+    reason += ")";
+    return new IncludeResult("", reason.data(), reason.size(), nullptr);
+  }
+
+  void releaseInclude(IncludeResult* result) override { delete result; }
+
+ private:
+  IncludeResult* TryOpen(const fs::path& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) return nullptr;
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return nullptr;
+    std::ostringstream text;
+    text << in.rdbuf();
+    const std::string name = path.lexically_normal().string();
+    const std::string& stored = files_[name] = text.str();  // std::map keeps the data alive and in place
+    return new IncludeResult(name, stored.data(), stored.size(), nullptr);
+  }
+
+  const std::vector<std::string>& includeDirs_;
+  SourceFiles& files_;
+  std::list<std::string> messages_;
+};
+
+std::string BuildPreamble(const std::vector<Define>& defines) {
+  std::string preamble;
+  for (const Define& d : defines) preamble += "#define " + d.name + " " + (d.value.empty() ? "1" : d.value) + "\n";
+  return preamble;
+}
+
+// Puts each D3D register class of this stage into its rhi binding window of set 0.
+void ConfigureShader(glslang::TShader& shader, Stage stage, EShLanguage lang) {
+  using rhi::RegisterClass;
+  const auto base = [stage](RegisterClass c) { return rhi::BindingFor(static_cast<rhi::ShaderStage>(stage), c, 0); };
+  shader.setEnvInput(glslang::EShSourceHlsl, lang, glslang::EShClientVulkan, 100);
+  shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_3);
+  shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_5);
+  shader.setEnvTargetHlslFunctionality1();  // keeps semantics as UserSemantic decorations
+  shader.setHlslIoMapping(true);            // classify resources as b/t/s/u, not GLSL kinds
+  shader.setAutoMapBindings(true);
+  shader.setAutoMapLocations(true);
+  shader.setResourceSetBinding({"0"});
+  // The HLSL IO resolver only produces these four resource types.
+  shader.setShiftBinding(glslang::EResUbo, base(RegisterClass::ConstantBuffer));
+  shader.setShiftBinding(glslang::EResTexture, base(RegisterClass::ShaderResource));
+  shader.setShiftBinding(glslang::EResSampler, base(RegisterClass::Sampler));
+  shader.setShiftBinding(glslang::EResUav, base(RegisterClass::UnorderedAccess));
+}
+
+void AddError(CompileResult& result, const std::string& file, std::string message) {
+  result.errors.push_back({file, 0, 0, std::move(message)});
+}
+
+spvtools::MessageConsumer CollectInto(std::string& sink) {
+  return [&sink](spv_message_level_t level, const char*, const spv_position_t& pos, const char* message) {
+    if (level > SPV_MSG_ERROR) return;
+    if (!sink.empty()) sink += "; ";
+    sink += message;
+    if (pos.index != 0) sink += " (word " + std::to_string(pos.index) + ")";
+  };
+}
+
+// glslang emits HLSL "literally" (opaque types in function parameters and
+// locals, static const arrays); the SPIRV-Tools legalization recipe inlines
+// and forwards them so the module is valid for Vulkan. glslang's own call to
+// it prints to std::cerr, so it is run here instead.
+bool Legalize(std::vector<uint32_t>& spirv, std::string& error) {
+  spvtools::Optimizer optimizer(SPV_ENV_VULKAN_1_3);
+  optimizer.SetMessageConsumer(CollectInto(error));
+  optimizer.RegisterLegalizationPasses();
+  spvtools::OptimizerOptions options;
+  options.set_run_validator(false);  // the input is not valid before legalization
+  std::vector<uint32_t> legal;
+  if (!optimizer.Run(spirv.data(), spirv.size(), &legal, options)) return false;
+  spirv = std::move(legal);
+  return true;
+}
+
+// Rewrites the (single) OpEntryPoint's name literal to "main".
+void RenameEntryPoint(std::vector<uint32_t>& spirv) {
+  for (size_t at = 5; at < spirv.size();) {
+    const uint32_t count = spirv[at] >> 16;
+    if (count == 0 || at + count > spirv.size()) return;
+    if ((spirv[at] & 0xffff) != kOpEntryPoint) {
+      at += count;
+      continue;
+    }
+    size_t nameEnd = at + 3;  // words: opcode, execution model, function id, name..., interface ids...
+    while (nameEnd < at + count && (spirv[nameEnd] >> 24) != 0) ++nameEnd;
+    std::vector<uint32_t> name((sizeof(kSpirvEntryPoint) + 3) / 4, 0);
+    std::memcpy(name.data(), kSpirvEntryPoint, sizeof(kSpirvEntryPoint));
+    spirv.erase(spirv.begin() + at + 3, spirv.begin() + nameEnd + 1);
+    spirv.insert(spirv.begin() + at + 3, name.begin(), name.end());
+    const uint32_t newCount =
+        count - static_cast<uint32_t>(nameEnd + 1 - (at + 3)) + static_cast<uint32_t>(name.size());
+    spirv[at] = (newCount << 16) | kOpEntryPoint;
+    return;
+  }
+}
+
+bool Validate(const std::vector<uint32_t>& spirv, std::string& error) {
+  spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_3);
+  tools.SetMessageConsumer(CollectInto(error));
+  return tools.Validate(spirv);
+}
+
+// Parse, link and IO-map; reflection and SPIR-V generation need all three.
+bool Frontend(const CompileRequest& request, const std::string& fileName, EShLanguage lang, Stage stage,
+              glslang::TShader& shader, glslang::TProgram& program, SourceFiles& files, CompileResult& result) {
+  const char* text = request.source.c_str();
+  const int length = static_cast<int>(request.source.size());
+  const char* name = fileName.c_str();
+  const std::string preamble = BuildPreamble(request.defines);
+  shader.setStringsWithLengthsAndNames(&text, &length, &name, 1);
+  shader.setPreamble(preamble.c_str());
+  // glslang's own renaming (setEntryPoint("main") + setSourceEntryPoint) would
+  // silently fall back to any function named "main" when the requested entry
+  // point is missing, so the HLSL name is kept here and renamed in the SPIR-V.
+  shader.setEntryPoint(request.entryPoint.c_str());
+  ConfigureShader(shader, stage, lang);
+  // glslang 12 does not switch HLSL buffers to the StorageBuffer class for
+  // SPIR-V >= 1.3 itself; the old Uniform+BufferBlock form is invalid in 1.5.
+  shader.getIntermediate()->setUseStorageBuffer();
+
+  const auto messages =
+      static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules | EShMsgReadHlsl | EShMsgHlslOffsets);
+  Includer includer(request.includeDirs, files);
+  const bool parsed = shader.parse(GetDefaultResources(), 100, false, messages, includer);
+  ParseInfoLog(shader.getInfoLog(), fileName, files, result.errors, result.warnings);
+  if (!parsed) return false;
+
+  program.addShader(&shader);
+  const bool linked = program.link(messages);
+  ParseInfoLog(program.getInfoLog(), fileName, files, result.errors, result.warnings);
+  if (!linked) return false;
+  if (program.getIntermediate(lang)->getNumEntryPoints() != 1) {
+    AddError(result, fileName, "entry point '" + request.entryPoint + "' not found");
+    return false;
+  }
+  if (!program.mapIO()) {
+    AddError(result, fileName, "resource binding assignment failed");
+    return false;
+  }
+  return true;
+}
+
+std::vector<uint32_t> GenerateSpirv(const glslang::TProgram& program, EShLanguage lang, const std::string& fileName,
+                                    CompileResult& result) {
+  glslang::SpvOptions options;
+  options.disableOptimizer = true;  // legalization runs in Legalize() with our message consumer
+  options.validate = false;
+  spv::SpvBuildLogger logger;
+  std::vector<uint32_t> spirv;
+  glslang::GlslangToSpv(*program.getIntermediate(lang), spirv, &logger, &options);
+  if (const std::string log = logger.getAllMessages(); !log.empty()) result.warnings.push_back({fileName, 0, 0, log});
+  return spirv;
+}
+
+void Finish(std::vector<uint32_t> spirv, const std::string& fileName, CompileResult& result) {
+  std::string error;
+  if (!Legalize(spirv, error)) return AddError(result, fileName, "SPIR-V legalization failed: " + error);
+  RenameEntryPoint(spirv);
+  if (!Validate(spirv, error)) return AddError(result, fileName, "SPIR-V validation failed: " + error);
+  result.spirv = std::move(spirv);
+}
+
+}  // namespace
+
+CompileResult CompileInProcess(const CompileRequest& request) {
+  CompileResult result;
+  const std::string fileName = SourceName(request);
+  bool validProfile = false;
+  result.stage = StageFromProfile(request.profile, &validProfile);
+  if (!validProfile) {
+    AddError(result, fileName,
+             "unknown profile '" + request.profile + "' (expected vs/hs/ds/gs/ps/cs_4_0, _4_1 or _5_0)");
+    return result;
+  }
+  if (request.entryPoint.empty()) {
+    AddError(result, fileName, "no entry point given");
+    return result;
+  }
+  static const std::regex kIdentifier(R"([A-Za-z_]\w*)");
+  for (const Define& d : request.defines) {
+    if (!std::regex_match(d.name, kIdentifier) || d.value.find_first_of("\r\n") != std::string::npos)
+      AddError(result, fileName,
+               "invalid define '" + d.name + "': the name must be an identifier and the value one line");
+  }
+  if (!result.errors.empty()) return result;
+
+  EnsureGlslangInitialized();
+  const EShLanguage lang = ToGlslang(result.stage);
+  // The program must be destroyed before the shader it links.
+  glslang::TShader shader(lang);
+  glslang::TProgram program;
+  SourceFiles files{{fileName, request.source}};
+  if (!Frontend(request, fileName, lang, result.stage, shader, program, files, result)) {
+    if (result.errors.empty()) AddError(result, fileName, "compilation failed");
+    return result;
+  }
+  if (!program.buildReflection(EShReflectionAllBlockVariables | EShReflectionSeparateBuffers)) {
+    AddError(result, fileName, "glslang reflection failed");
+    return result;
+  }
+  std::vector<uint32_t> spirv = GenerateSpirv(program, lang, fileName, result);
+  // Reflect from the unoptimized module: it still has every declared block.
+  Reflect(program, result.stage, files, spirv, result);
+  Finish(std::move(spirv), fileName, result);
+  result.ok = result.errors.empty();
+  return result;
+}
+
+}  // namespace hlsl::detail

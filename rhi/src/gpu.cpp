@@ -31,9 +31,6 @@ namespace {
 
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 
-// DEVICE_OPTIONS::InstanceExtensions, handed from Create to CreateInstance.
-thread_local std::vector<const char*> tInstanceExtensions;
-
 bool EnvFlag(const char* name) {
   const char* value = std::getenv(name);
   return value && value[0] == '1';
@@ -77,7 +74,8 @@ HRESULT Gpu::Create(const DEVICE_OPTIONS& options, std::unique_ptr<Gpu>* out) {
   const bool validation = options.EnableValidation || EnvFlag("RHI_VALIDATION");
 #endif
   const char* wanted = options.AdapterName ? options.AdapterName : std::getenv("RHI_DEVICE");
-  tInstanceExtensions.assign(options.InstanceExtensions, options.InstanceExtensions + options.InstanceExtensionCount);
+  gpu->instanceExtensions_.assign(options.InstanceExtensions,
+                                  options.InstanceExtensions + options.InstanceExtensionCount);
   HRESULT hr = gpu->CreateInstance(validation);
   if (SUCCEEDED(hr)) hr = gpu->PickPhysicalDevice(wanted);
   if (SUCCEEDED(hr)) hr = gpu->CreateLogicalDevice();
@@ -99,7 +97,7 @@ HRESULT Gpu::CreateInstance(bool validation) {
   app.apiVersion = VK_API_VERSION_1_3;
 
   std::vector<const char*> layers;
-  std::vector<const char*> extensions = tInstanceExtensions;
+  std::vector<const char*> extensions = instanceExtensions_;
   if (validation) {
     layers.push_back(kValidationLayer);
     extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
@@ -229,7 +227,7 @@ HRESULT Gpu::CreateLogicalDevice() {
     tail = &feature.pNext;
   };
   // rhi/swap_chain.h; VK_KHR_swapchain needs the instance's VK_KHR_surface.
-  for (const char* name : tInstanceExtensions)
+  for (const char* name : instanceExtensions_)
     if (std::strcmp(name, VK_KHR_SURFACE_EXTENSION_NAME) == 0) enableIfPresent(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
   chainIf(enableIfPresent(VK_EXT_TRANSFORM_FEEDBACK_EXTENSION_NAME), xfb);
   chainIf(enableIfPresent(VK_EXT_ROBUSTNESS_2_EXTENSION_NAME), robustness);

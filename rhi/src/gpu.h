@@ -112,6 +112,8 @@ class Gpu {
   std::string adapterName_;
   bool nativeDrawAuto_ = false;
   MessageCallback onMessage_;
+  // DEVICE_OPTIONS::InstanceExtensions (window-system integration for swap chains).
+  std::vector<const char*> instanceExtensions_;
 
   std::unique_ptr<Submission> recording_;
   std::deque<std::unique_ptr<Submission>> inFlight_;

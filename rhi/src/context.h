@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <tuple>
 #include <vector>
 
 #include "device.h"
@@ -171,7 +172,7 @@ class ContextImpl final : public DeviceContext {
     bool offsetPending = false;  // the next stream-out starts at `offset`, not at the counter
   };
 
-  void SetShader(ShaderStage stage, DeviceChild* object, std::shared_ptr<const ShaderCode> code);
+  void SetShader(ShaderStage stage, Bindable* object, std::shared_ptr<const ShaderCode> code);
   void SetConstantBuffers(ShaderStage stage, UINT start, UINT count, Buffer* const* buffers);
   void SetShaderResources(ShaderStage stage, UINT start, UINT count, ShaderResourceView* const* views);
   void SetSamplers(ShaderStage stage, UINT start, UINT count, SamplerState* const* samplers);
@@ -226,9 +227,18 @@ class ContextImpl final : public DeviceContext {
   uint64_t renderingInstance_ = 0;
   VkExtent2D renderArea_{1, 1};
   VkSampler defaultSampler_ = VK_NULL_HANDLE;
+  std::tuple<std::vector<VkWriteDescriptorSet>, std::vector<VkDescriptorBufferInfo>,
+             std::vector<VkDescriptorImageInfo>, std::vector<VkBufferView>>
+      descriptorScratch_;
   bool renderTargetsChanged_ = true;
   const GraphicsPipeline* boundPipeline_ = nullptr;
-  bool dynamicStateDirty_ = true;
+  // Vulkan dynamic state that must be recorded again. It survives pipeline
+  // binds (every pipeline declares it dynamic), except viewport and scissor,
+  // which pipelines that rasterize nothing lack.
+  struct DynamicStateDirty {
+    bool viewport = true, topology = true, stencilRef = true, blendConstants = true;
+    void All() { viewport = topology = stencilRef = blendConstants = true; }
+  } dynamicDirty_;
   bool descriptorsDirty_ = true;
   bool vertexBuffersDirty_ = true;
   std::unique_ptr<QueryTracker> queries_;

@@ -1,6 +1,7 @@
 // The draw and dispatch path: pipeline lookup, resource tracking, rendering
 // instances, dynamic state, push descriptors.
 #include <algorithm>
+#include <bit>
 
 #include "context.h"
 #include "pipelines.h"
@@ -133,6 +134,7 @@ void ContextImpl::BeginRendering() {
   vkCmdBeginRendering(Commands(), &info);
   rendering_ = true;
   renderTargetsChanged_ = false;
+  if (renderArea_.width != extent.width || renderArea_.height != extent.height) dynamicDirty_.viewport = true;
   renderArea_ = extent;
 }
 
@@ -225,18 +227,25 @@ void ContextImpl::BindGraphicsState(const GraphicsPipeline& pipeline) {
   VkCommandBuffer commands = Commands();
   if (boundPipeline_ != &pipeline) {
     vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline);
-    // Pipelines without some dynamic state invalidate it; re-emit everything.
-    dynamicStateDirty_ = descriptorsDirty_ = true;
+    // A pipeline without viewport state invalidates it; pushed descriptors
+    // survive only binds with the same layout; the vertex stride state exists
+    // only in pipelines with vertex bindings.
+    if (pipeline.rasterizes && !(boundPipeline_ && boundPipeline_->rasterizes)) dynamicDirty_.viewport = true;
+    if (!boundPipeline_ || boundPipeline_->layout != pipeline.layout) descriptorsDirty_ = true;
+    if (!boundPipeline_ || boundPipeline_->vertexSlots != pipeline.vertexSlots) vertexBuffersDirty_ = true;
     boundPipeline_ = &pipeline;
   }
-  if (dynamicStateDirty_) {
-    if (pipeline.rasterizes) SetViewportsAndScissors();
-    vkCmdSetStencilReference(commands, VK_STENCIL_FACE_FRONT_AND_BACK, stencilRef_ & 0xFF);
-    vkCmdSetBlendConstants(commands, blendFactor_.data());
+  if (dynamicDirty_.viewport && pipeline.rasterizes) {
+    SetViewportsAndScissors();
+    dynamicDirty_.viewport = false;
+  }
+  if (dynamicDirty_.stencilRef) vkCmdSetStencilReference(commands, VK_STENCIL_FACE_FRONT_AND_BACK, stencilRef_ & 0xFF);
+  if (dynamicDirty_.blendConstants) vkCmdSetBlendConstants(commands, blendFactor_.data());
+  if (dynamicDirty_.topology) {
     vkCmdSetPrimitiveTopology(commands, ToVkTopology(topology_));
     vkCmdSetPrimitiveRestartEnable(commands, IsStrip(topology_));
-    dynamicStateDirty_ = false;
   }
+  dynamicDirty_.stencilRef = dynamicDirty_.blendConstants = dynamicDirty_.topology = false;
   if (vertexBuffersDirty_) {
     BindVertexAndIndexBuffers(pipeline);
     vertexBuffersDirty_ = false;
@@ -277,8 +286,8 @@ void ContextImpl::SetViewportsAndScissors() {
 
 void ContextImpl::BindVertexAndIndexBuffers(const GraphicsPipeline& pipeline) {
   VkCommandBuffer commands = Commands();
-  for (uint32_t slot = 0; slot < vertexBuffers_.size(); ++slot) {
-    if (!(pipeline.vertexSlots >> slot & 1)) continue;
+  for (uint32_t slots = pipeline.vertexSlots; slots; slots &= slots - 1) {
+    const uint32_t slot = static_cast<uint32_t>(std::countr_zero(slots));
     const VertexBufferBinding& binding = vertexBuffers_[slot];
     VkBuffer buffer = binding.buffer ? binding.buffer->handle() : VK_NULL_HANDLE;
     VkDeviceSize offset = binding.buffer ? binding.buffer->baseOffset() + binding.offset : 0;
@@ -294,10 +303,12 @@ void ContextImpl::BindVertexAndIndexBuffers(const GraphicsPipeline& pipeline) {
 
 void ContextImpl::PushDescriptors(VkPipelineBindPoint bindPoint, VkPipelineLayout layout,
                                   const std::vector<VkDescriptorSetLayoutBinding>& bindings) {
-  std::vector<VkWriteDescriptorSet> writes(bindings.size());
-  std::vector<VkDescriptorBufferInfo> buffers(bindings.size());
-  std::vector<VkDescriptorImageInfo> images(bindings.size());
-  std::vector<VkBufferView> texelBuffers(bindings.size());
+  // Scratch arrays keep their capacity across draws: no allocation per draw.
+  auto& [writes, buffers, images, texelBuffers] = descriptorScratch_;
+  writes.resize(bindings.size());
+  buffers.resize(bindings.size());
+  images.resize(bindings.size());
+  texelBuffers.resize(bindings.size());
   for (size_t i = 0; i < bindings.size(); ++i) {
     const VkDescriptorSetLayoutBinding& binding = bindings[i];
     RegisterSlot reg = RegisterOfBinding(binding.binding);
@@ -311,7 +322,8 @@ void ContextImpl::PushDescriptors(VkPipelineBindPoint bindPoint, VkPipelineLayou
     write.pImageInfo = &images[i];
     write.pTexelBufferView = &texelBuffers[i];
     buffers[i] = {VK_NULL_HANDLE, 0, VK_WHOLE_SIZE};
-    images[i].imageLayout = VK_IMAGE_LAYOUT_GENERAL;
+    images[i] = {VK_NULL_HANDLE, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL};
+    texelBuffers[i] = VK_NULL_HANDLE;
     const ViewTarget* view = nullptr;
     switch (reg.registerClass) {
       case RegisterClass::ConstantBuffer:

@@ -51,19 +51,21 @@ void ContextImpl::IASetIndexBuffer(Buffer* pIndexBuffer, DXGI_FORMAT Format, UIN
 
 void ContextImpl::IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY Topology) {
   topology_ = Topology;
-  dynamicStateDirty_ = true;
+  dynamicDirty_.topology = true;
 }
 
-void ContextImpl::SetShader(ShaderStage stage, DeviceChild* object, std::shared_ptr<const ShaderCode> code) {
+void ContextImpl::SetShader(ShaderStage stage, Bindable* object, std::shared_ptr<const ShaderCode> code) {
   StageState& state = stages_[static_cast<uint32_t>(stage)];
-  state.shaderObject = dynamic_cast<Bindable*>(object);
+  state.shaderObject = object;
   state.shader = std::move(code);
   descriptorsDirty_ = true;
 }
 
-#define RHI_SET_SHADER(Prefix, Stage, Interface)                                                 \
-  void ContextImpl::Prefix##SetShader(Interface* pShader, ClassInstance* const*, UINT) {         \
-    SetShader(ShaderStage::Stage, pShader, pShader ? ShaderCodeOf(pShader) : nullptr);           \
+// Each interface has one implementation, so a static_cast finds the code.
+#define RHI_SET_SHADER(Prefix, Stage, Interface)                                          \
+  void ContextImpl::Prefix##SetShader(Interface* pShader, ClassInstance* const*, UINT) {  \
+    auto* object = static_cast<ShaderObject<Interface>*>(pShader);                        \
+    SetShader(ShaderStage::Stage, object, object ? object->code() : nullptr);             \
   }
 RHI_SET_SHADER(VS, Vertex, VertexShader)
 RHI_SET_SHADER(HS, Hull, HullShader)
@@ -133,16 +135,17 @@ void ContextImpl::SOGetTargets(UINT NumBuffers, Buffer** ppSOTargets) {
 
 void ContextImpl::RSSetState(RasterizerState* pRasterizerState) {
   rasterizer_ = static_cast<RasterizerStateImpl*>(pRasterizerState);
+  dynamicDirty_.viewport = true;  // ScissorEnable decides the scissor
 }
 
 void ContextImpl::RSSetViewports(UINT NumViewports, const VIEWPORT* pViewports) {
   viewports_.assign(pViewports, pViewports + std::min(NumViewports, VIEWPORT_AND_SCISSORRECT_OBJECT_COUNT_PER_PIPELINE));
-  dynamicStateDirty_ = true;
+  dynamicDirty_.viewport = true;
 }
 
 void ContextImpl::RSSetScissorRects(UINT NumRects, const RECT* pRects) {
   scissors_.assign(pRects, pRects + std::min(NumRects, VIEWPORT_AND_SCISSORRECT_OBJECT_COUNT_PER_PIPELINE));
-  dynamicStateDirty_ = true;
+  dynamicDirty_.viewport = true;
 }
 
 void ContextImpl::OMSetRenderTargets(UINT NumViews, RenderTargetView* const* ppRenderTargetViews,
@@ -167,13 +170,13 @@ void ContextImpl::OMSetBlendState(BlendState* pBlendState, const FLOAT BlendFact
   else
     blendFactor_ = {1, 1, 1, 1};
   sampleMask_ = SampleMask;
-  dynamicStateDirty_ = true;
+  dynamicDirty_.blendConstants = true;
 }
 
 void ContextImpl::OMSetDepthStencilState(DepthStencilState* pDepthStencilState, UINT StencilRef) {
   depthStencilState_ = static_cast<DepthStencilStateImpl*>(pDepthStencilState);
   stencilRef_ = StencilRef;
-  dynamicStateDirty_ = true;
+  dynamicDirty_.stencilRef = true;
 }
 
 bool ContextImpl::IsBoundForWriting(Resource* resource) const {
@@ -222,7 +225,8 @@ void ContextImpl::ClearState() {
   sampleMask_ = DEFAULT_SAMPLE_MASK;
   depthStencilState_.Reset();
   stencilRef_ = 0;
-  renderTargetsChanged_ = dynamicStateDirty_ = descriptorsDirty_ = vertexBuffersDirty_ = true;
+  renderTargetsChanged_ = descriptorsDirty_ = vertexBuffersDirty_ = true;
+  dynamicDirty_.All();
 }
 
 void ContextImpl::ReportDrawError(const std::string& text) {

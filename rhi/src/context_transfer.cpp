@@ -398,7 +398,8 @@ void ContextImpl::Flush() {
   gpu.Submit();
   // A new command buffer starts with no state bound.
   boundPipeline_ = nullptr;
-  dynamicStateDirty_ = descriptorsDirty_ = vertexBuffersDirty_ = true;
+  descriptorsDirty_ = vertexBuffersDirty_ = true;
+  dynamicDirty_.All();
   queries_->Resume(Commands());
 }
 

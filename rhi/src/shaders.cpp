@@ -24,12 +24,6 @@ const char* StageName(ShaderStage stage) {
   return "?";
 }
 
-// The object behind any D3D shader interface.
-template <class Interface>
-const ShaderObject<Interface>* AsShaderObject(DeviceChild* object) {
-  return dynamic_cast<const ShaderObject<Interface>*>(object);
-}
-
 template <class Interface>
 HRESULT CreateShaderObject(DeviceImpl& device, const void* bytecode, SIZE_T length, ClassLinkage* linkage,
                            ShaderStage stage, const char* call, Interface** out) {
@@ -44,16 +38,6 @@ HRESULT CreateShaderObject(DeviceImpl& device, const void* bytecode, SIZE_T leng
 
 bool StreamOutput::capturesStream(UINT stream) const {
   return std::any_of(entries.begin(), entries.end(), [&](const auto& e) { return e.Stream == stream; });
-}
-
-std::shared_ptr<const ShaderCode> ShaderCodeOf(DeviceChild* shader) {
-  if (auto* vs = AsShaderObject<VertexShader>(shader)) return vs->code();
-  if (auto* hs = AsShaderObject<HullShader>(shader)) return hs->code();
-  if (auto* ds = AsShaderObject<DomainShader>(shader)) return ds->code();
-  if (auto* gs = AsShaderObject<GeometryShader>(shader)) return gs->code();
-  if (auto* ps = AsShaderObject<PixelShader>(shader)) return ps->code();
-  if (auto* cs = AsShaderObject<ComputeShader>(shader)) return cs->code();
-  return nullptr;
 }
 
 HRESULT LoadShaderCode(DeviceImpl& device, const void* bytecode, SIZE_T length, ShaderStage expected,

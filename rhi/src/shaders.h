@@ -35,9 +35,6 @@ class ShaderCode {
   std::shared_ptr<const StreamOutput> streamOutput;
 };
 
-// The code behind any shader object.
-std::shared_ptr<const ShaderCode> ShaderCodeOf(DeviceChild* shader);
-
 template <class Interface>
 class ShaderObject final : public DeviceChildImpl<Interface> {
  public:

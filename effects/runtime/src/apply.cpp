@@ -1,0 +1,151 @@
+// EffectPass::Apply with FX11 semantics: set what the pass assigns, in order,
+// and for every shader it sets, upload and bind what that shader reads.
+#include <array>
+
+#include "effect_impl.h"
+
+namespace fx::detail {
+namespace {
+
+using rhi::DeviceContext;
+using RC = rhi::RegisterClass;
+
+constexpr UINT kMaxBindCount = 128;
+
+void SetConstantBuffer(DeviceContext* c, ShaderStage stage, UINT slot, rhi::Buffer* b) {
+  switch (stage) {
+    case ShaderStage::Vertex: c->VSSetConstantBuffers(slot, 1, &b); break;
+    case ShaderStage::Hull: c->HSSetConstantBuffers(slot, 1, &b); break;
+    case ShaderStage::Domain: c->DSSetConstantBuffers(slot, 1, &b); break;
+    case ShaderStage::Geometry: c->GSSetConstantBuffers(slot, 1, &b); break;
+    case ShaderStage::Pixel: c->PSSetConstantBuffers(slot, 1, &b); break;
+    case ShaderStage::Compute: c->CSSetConstantBuffers(slot, 1, &b); break;
+  }
+}
+
+void SetShaderResources(DeviceContext* c, ShaderStage stage, UINT slot, UINT n, rhi::ShaderResourceView* const* v) {
+  switch (stage) {
+    case ShaderStage::Vertex: c->VSSetShaderResources(slot, n, v); break;
+    case ShaderStage::Hull: c->HSSetShaderResources(slot, n, v); break;
+    case ShaderStage::Domain: c->DSSetShaderResources(slot, n, v); break;
+    case ShaderStage::Geometry: c->GSSetShaderResources(slot, n, v); break;
+    case ShaderStage::Pixel: c->PSSetShaderResources(slot, n, v); break;
+    case ShaderStage::Compute: c->CSSetShaderResources(slot, n, v); break;
+  }
+}
+
+void SetSamplers(DeviceContext* c, ShaderStage stage, UINT slot, UINT n, rhi::SamplerState* const* s) {
+  switch (stage) {
+    case ShaderStage::Vertex: c->VSSetSamplers(slot, n, s); break;
+    case ShaderStage::Hull: c->HSSetSamplers(slot, n, s); break;
+    case ShaderStage::Domain: c->DSSetSamplers(slot, n, s); break;
+    case ShaderStage::Geometry: c->GSSetSamplers(slot, n, s); break;
+    case ShaderStage::Pixel: c->PSSetSamplers(slot, n, s); break;
+    case ShaderStage::Compute: c->CSSetSamplers(slot, n, s); break;
+  }
+}
+
+// The shader object the assignment sets: a pass's SetGeometryShader of a
+// ConstructGSWithSO over a vertex shader sets the stream-output GS.
+void SetShader(DeviceContext* c, ShaderStage stage, const ShaderState* s) {
+  switch (stage) {
+    case ShaderStage::Vertex: c->VSSetShader(s ? s->vs.Get() : nullptr, nullptr, 0); break;
+    case ShaderStage::Hull: c->HSSetShader(s ? s->hs.Get() : nullptr, nullptr, 0); break;
+    case ShaderStage::Domain: c->DSSetShader(s ? s->ds.Get() : nullptr, nullptr, 0); break;
+    case ShaderStage::Geometry: c->GSSetShader(s ? s->gs.Get() : nullptr, nullptr, 0); break;
+    case ShaderStage::Pixel: c->PSSetShader(s ? s->ps.Get() : nullptr, nullptr, 0); break;
+    case ShaderStage::Compute: c->CSSetShader(s ? s->cs.Get() : nullptr, nullptr, 0); break;
+  }
+}
+
+template <class T>
+std::array<T*, kMaxBindCount> Gather(const ObjectSlots<T>& slots, UINT count) {
+  std::array<T*, kMaxBindCount> objects{};
+  for (UINT i = 0; i < count && i < kMaxBindCount; ++i) objects[i] = slots.Get(i);
+  return objects;
+}
+
+void BindShaderInputs(EffectImpl& e, DeviceContext* c, ShaderStage stage, const ShaderState& s) {
+  e.Upload(c, s);
+  for (const Binding& b : s.bindings) {
+    const UINT count = std::min(b.count, kMaxBindCount);
+    switch (b.cls) {
+      case RC::ConstantBuffer: {
+        const CBufferState& cb = e.cbuffers[b.variable];
+        SetConstantBuffer(c, stage, b.slot, cb.userBuffer ? cb.userBuffer.Get() : cb.layouts[b.layout].buffer.Get());
+        break;
+      }
+      case RC::ShaderResource: SetShaderResources(c, stage, b.slot, count, Gather(e.srvs[b.variable], count).data()); break;
+      case RC::Sampler: SetSamplers(c, stage, b.slot, count, Gather(e.samplers[b.variable], count).data()); break;
+      case RC::UnorderedAccess:
+        // The RHI binds UAVs to the compute stage only (no OMSetRenderTargetsAndUnorderedAccessViews).
+        if (stage == ShaderStage::Compute)
+          c->CSSetUnorderedAccessViews(b.slot, count, Gather(e.uavs[b.variable], count).data(), nullptr);
+        break;
+    }
+  }
+}
+
+void RunAction(EffectImpl& e, DeviceContext* c, const PassAction& a) {
+  switch (a.kind) {
+    case PassAction::Kind::Shader: {
+      const ShaderState* s = a.index >= 0 ? &e.shaders[a.index] : nullptr;
+      SetShader(c, a.stage, s);
+      if (s) BindShaderInputs(e, c, a.stage, *s);
+      break;
+    }
+    case PassAction::Kind::Blend:
+      c->OMSetBlendState(a.index >= 0 ? e.blendStates[a.index].Get(a.element) : nullptr, a.blendFactor.data(),
+                         a.sampleMask);
+      break;
+    case PassAction::Kind::DepthStencil:
+      c->OMSetDepthStencilState(a.index >= 0 ? e.depthStates[a.index].Get(a.element) : nullptr, a.stencilRef);
+      break;
+    case PassAction::Kind::Rasterizer:
+      c->RSSetState(a.index >= 0 ? e.rasterStates[a.index].Get(a.element) : nullptr);
+      break;
+  }
+}
+
+}  // namespace
+
+void EffectImpl::Upload(rhi::DeviceContext* context, const ShaderState& shader) {
+  for (const Binding& b : shader.bindings) {
+    if (b.cls != RC::ConstantBuffer) continue;
+    CBufferState& cb = cbuffers[b.variable];
+    GpuLayout& layout = cb.layouts[b.layout];
+    if (cb.userBuffer || layout.uploadedVersion == cb.version || !layout.buffer) continue;
+    std::vector<uint8_t> bytes(std::max<uint32_t>(layout.compiled.size, 16));
+    ApplyCopyPlan(layout.plan, cb.data, bytes);
+    context->UpdateSubresource(layout.buffer.Get(), 0, nullptr, bytes.data(), 0, 0);
+    layout.uploadedVersion = cb.version;
+  }
+}
+
+HRESULT PassImpl::Apply(UINT Flags, rhi::DeviceContext* pContext) {
+  if (!effect_ || !pContext || Flags != 0) return rhi::E_INVALIDARG;
+  for (const PassAction& action : actions_) RunAction(*effect_, pContext, action);
+  return rhi::S_OK;
+}
+
+HRESULT PassImpl::GetDesc(PASS_DESC* pDesc) {
+  if (!effect_ || !pDesc) return rhi::E_FAIL;
+  *pDesc = {};
+  pDesc->Name = ast_->name.c_str();
+  pDesc->Annotations = static_cast<UINT>(ast_->annotations.size());
+  for (const PassAction& a : actions_) {
+    if (a.kind == PassAction::Kind::Shader && a.stage == ShaderStage::Vertex) {
+      const auto* code = a.index >= 0 ? effect_->shaders[a.index].code.get() : nullptr;
+      pDesc->pIAInputSignature = code ? code->spirv.data() : nullptr;
+      pDesc->IAInputSignatureSize = code ? code->spirv.size() * 4 : 0;
+    }
+    if (a.kind == PassAction::Kind::Blend) {
+      std::copy(a.blendFactor.begin(), a.blendFactor.end(), pDesc->BlendFactor);
+      pDesc->SampleMask = a.sampleMask;
+    }
+    if (a.kind == PassAction::Kind::DepthStencil) pDesc->StencilRef = a.stencilRef;
+  }
+  return rhi::S_OK;
+}
+
+}  // namespace fx::detail

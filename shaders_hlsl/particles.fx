@@ -1,0 +1,138 @@
+// The GPU particle system of document 000 as one effect: technique Update
+// streams the particles out through a geometry shader (nothing rasterized),
+// technique Draw expands them into alpha-blended billboards. Both geometry
+// shaders live here although glslang 12 crashes on a source holding a
+// PointStream GS and a TriangleStream GS: the effect runtime blanks the other
+// stream-type GS before compiling each entry.
+#include "particle.hlsli"
+#include "particle_rule.hlsli"
+
+cbuffer UpdateParams : register(b0) {
+  uint Frame;              // index of this update, from 1
+  uint SpawnPerFrame = 10; // children per emitter per update
+  uint MinLife = 50;
+  uint LifeRange = 100;
+  float3 Spread = float3(1, 1, 1);  // random initial velocity range
+  float SpeedUp = 2;                // initial upward speed
+};
+
+cbuffer DrawParams : register(b1) {
+  float4x4 ViewProj;
+  float3 Eye;
+  float Seconds = 0.016;  // seconds per update
+  float3 Acceleration = float3(0, -0.5, 0);
+  float Size = 0.05;
+};
+
+Texture2D Puff;
+SamplerState Linear { Filter = MIN_MAG_MIP_LINEAR; AddressU = Clamp; AddressV = Clamp; };
+
+DepthStencilState DisableDepth { DepthEnable = FALSE; DepthWriteMask = ZERO; };
+RasterizerState NoCull { CullMode = NONE; };  // billboards face the eye either way round
+DepthStencilState TestNoWrite { DepthEnable = TRUE; DepthWriteMask = ZERO; DepthFunc = LESS; };
+BlendState AlphaBlend {
+  BlendEnable[0] = TRUE;
+  SrcBlend[0] = SRC_ALPHA;
+  DestBlend[0] = INV_SRC_ALPHA;
+  SrcBlendAlpha[0] = ONE;
+  DestBlendAlpha[0] = INV_SRC_ALPHA;
+};
+
+// ---------------------------------------------------------------------------
+// Update
+
+Particle VSPassThrough(Particle p) { return p; }
+
+float3 RandomDirection(uint seed) {
+  uint3 bits = uint3(ParticleHash(seed + 1u), ParticleHash(seed + 2u), ParticleHash(seed + 3u));
+  return float3(bits & 0xFFFFu) / 65535.0 * 2.0 - 1.0;
+}
+
+[maxvertexcount(17)]
+void GSUpdate(point Particle input[1], inout PointStream<Particle> stream) {
+  Particle p = input[0];
+  p.seedAge.y += 1;
+  if (p.kindLife.x == 0) {
+    stream.Append(p);  // emitters live forever
+    for (uint slot = 0; slot < SpawnPerFrame; ++slot) {
+      Particle child;
+      uint seed = ChildSeed(p.seedAge.x, Frame, slot, SpawnPerFrame);
+      child.origin = p.origin;
+      child.velocity = RandomDirection(seed) * Spread + float3(0, SpeedUp, 0);
+      child.seedAge = uint2(seed, 0);
+      child.kindLife = uint2(1, ChildLifetime(seed, MinLife, LifeRange));
+      stream.Append(child);
+    }
+  } else if (p.seedAge.y < p.kindLife.y) {
+    stream.Append(p);
+  }
+}
+
+// ---------------------------------------------------------------------------
+// Draw
+
+struct Billboard {
+  float4 position : SV_Position;
+  float2 uv : TEXCOORD0;
+  float alpha : ALPHA;
+};
+
+struct Center {
+  float3 center : CENTER;
+  float age : AGE;  // 0..1 of its life
+  uint kind : KIND;
+};
+
+Center VSParticle(Particle p) {
+  Center c;
+  float t = p.seedAge.y * Seconds;
+  c.center = 0.5 * t * t * Acceleration + t * p.velocity + p.origin;
+  c.age = p.kindLife.y > 0 ? float(p.seedAge.y) / float(p.kindLife.y) : 0;
+  c.kind = p.kindLife.x;
+  return c;
+}
+
+// Expands a point into a quad facing the eye: z = (E-C)/|E-C|, x = (j x z)/|j x z|, y = z x x.
+[maxvertexcount(4)]
+void GSBillboard(point Center input[1], inout TriangleStream<Billboard> stream) {
+  if (input[0].kind == 0) return;  // emitters are invisible
+  float3 z = normalize(Eye - input[0].center);
+  float3 x = normalize(cross(float3(0, 1, 0), z));
+  float3 y = cross(z, x);
+  float size = Size * (0.5 + input[0].age);
+  float2 corners[4] = {float2(-1, -1), float2(-1, 1), float2(1, -1), float2(1, 1)};
+  for (uint i = 0; i < 4; ++i) {
+    Billboard b;
+    float3 world = input[0].center + (corners[i].x * x + corners[i].y * y) * size;
+    b.position = mul(ViewProj, float4(world, 1));
+    b.uv = corners[i] * 0.5 + 0.5;
+    b.alpha = saturate(1 - input[0].age) * 0.6;
+    stream.Append(b);
+  }
+}
+
+float4 PSSmoke(Billboard b) : SV_Target {
+  float4 puff = Puff.Sample(Linear, b.uv);
+  return float4(puff.rgb, puff.a * b.alpha);
+}
+
+technique11 Update {
+  pass P0 {
+    SetVertexShader(CompileShader(vs_5_0, VSPassThrough()));
+    SetGeometryShader(ConstructGSWithSO(CompileShader(gs_5_0, GSUpdate()),
+                                        "ORIGIN.xyz; VELOCITY.xyz; SEEDAGE.xy; KINDLIFE.xy"));
+    SetPixelShader(NULL);
+    SetDepthStencilState(DisableDepth, 0);
+  }
+}
+
+technique11 Draw {
+  pass P0 {
+    SetVertexShader(CompileShader(vs_5_0, VSParticle()));
+    SetGeometryShader(CompileShader(gs_5_0, GSBillboard()));
+    SetPixelShader(CompileShader(ps_5_0, PSSmoke()));
+    SetBlendState(AlphaBlend, float4(0, 0, 0, 0), 0xFFFFFFFF);
+    SetDepthStencilState(TestNoWrite, 0);
+    SetRasterizerState(NoCull);
+  }
+}

@@ -1,0 +1,236 @@
+// replay: the translucency demos of document 000 (SPEC.md), headless and deterministic.
+//
+//   replay --demo smoke|shards --method alpha|wboit|colored|sorted [--frames N] [--size WxH] --out DIR
+//       renders frames 0..N-1 (fixed time step, seeded, camera a function of the frame index)
+//       and writes DIR/<demo>_<method>_<frame>.png for the last frame
+//       (--all-frames: every frame; --literal-table4: colored composes with Table 4 as printed)
+//   replay --figures --out DIR [--size WxH] [--frames N]
+//       fig1_smoke_alpha_wboit.png (alpha | WBOIT), fig_shards_wboit_colored_sorted.png
+//       (WBOIT | colored | sorted) and per-method RMSE / PSNR against the sorted reference
+//   replay --bench [--frames N] [--size WxH]
+//       per method: frame ms (median over N frames, CPU wall time until the GPU finished) and
+//       per-pass GPU ms from TIMESTAMP queries inside a TIMESTAMP_DISJOINT query; WBOIT/alpha ratio
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#include <stb_image_write.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "renderer/translucency.h"
+#include "rhi/rhi.h"
+
+using renderer::TranslucencyDemo;
+using renderer::TranslucencyMethod;
+
+namespace {
+
+int gErrors = 0;
+
+[[noreturn]] void Fail(const std::string& what) {
+  std::fprintf(stderr, "replay: %s\n", what.c_str());
+  std::exit(1);
+}
+
+struct Options {
+  TranslucencyDemo demo = TranslucencyDemo::Smoke;
+  TranslucencyMethod method = TranslucencyMethod::Wboit;
+  int frames = -1;
+  uint32_t width = 640, height = 360;
+  std::string out = "out/replay";
+  bool figures = false, bench = false, allFrames = false, literalTable4 = false;
+};
+
+std::unique_ptr<renderer::Translucency> Make(rhi::Device* device, rhi::DeviceContext* ctx,
+                                             renderer::TranslucencySettings settings) {
+  std::string error;
+  auto t = renderer::Translucency::Create(device, ctx, settings, &error);
+  if (!t) Fail(error);
+  return t;
+}
+
+int DefaultFrames(TranslucencyDemo demo) { return demo == TranslucencyDemo::Smoke ? 120 : 1; }
+
+// Renders frames 0..frames-1 with one method and returns the last frame.
+std::vector<uint8_t> Replay(rhi::Device* device, rhi::DeviceContext* ctx, const renderer::TranslucencySettings& s,
+                            TranslucencyMethod method, int frames) {
+  auto t = Make(device, ctx, s);
+  for (int i = 0; i < frames; ++i) t->RenderFrame(method);
+  return t->ReadFrame();
+}
+
+void WritePng(const std::string& path, const std::vector<uint8_t>& rgba, uint32_t w, uint32_t h) {
+  if (!stbi_write_png(path.c_str(), int(w), int(h), 4, rgba.data(), int(w * 4))) Fail("cannot write " + path);
+  std::printf("wrote %s (%ux%u)\n", path.c_str(), w, h);
+}
+
+// Images of equal height side by side, with a 4-pixel white gap.
+std::vector<uint8_t> SideBySide(const std::vector<std::vector<uint8_t>>& images, uint32_t w, uint32_t h,
+                                uint32_t* outWidth) {
+  const uint32_t gap = 4, total = uint32_t(images.size()) * w + gap * uint32_t(images.size() - 1);
+  std::vector<uint8_t> out(size_t(total) * h * 4, 255);
+  for (size_t i = 0; i < images.size(); ++i)
+    for (uint32_t y = 0; y < h; ++y)
+      std::memcpy(&out[(size_t(y) * total + i * (w + gap)) * 4], &images[i][size_t(y) * w * 4], w * 4);
+  *outWidth = total;
+  return out;
+}
+
+int RunOne(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
+  renderer::TranslucencySettings s;
+  s.demo = o.demo;
+  s.width = o.width, s.height = o.height;
+  s.literalTable4 = o.literalTable4;
+  const int frames = o.frames > 0 ? o.frames : DefaultFrames(o.demo);
+  auto t = Make(device, ctx, s);
+  std::filesystem::create_directories(o.out);
+  for (int i = 0; i < frames; ++i) {
+    t->RenderFrame(o.method);
+    if (o.allFrames || i == frames - 1) {
+      char name[256];
+      std::snprintf(name, sizeof name, "%s_%s_%04d.png", renderer::ToString(o.demo), renderer::ToString(o.method), i);
+      WritePng((std::filesystem::path(o.out) / name).string(), t->ReadFrame(), o.width, o.height);
+    }
+  }
+  return 0;
+}
+
+int RunFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
+  std::filesystem::create_directories(o.out);
+  const TranslucencyMethod methods[4] = {TranslucencyMethod::Alpha, TranslucencyMethod::Wboit,
+                                         TranslucencyMethod::Colored, TranslucencyMethod::Sorted};
+  std::printf("%-8s %-8s %10s %10s\n", "demo", "method", "RMSE", "PSNR dB");
+  for (TranslucencyDemo demo : {TranslucencyDemo::Smoke, TranslucencyDemo::Shards}) {
+    renderer::TranslucencySettings s;
+    s.demo = demo;
+    s.width = o.width, s.height = o.height;
+    const int frames = o.frames > 0 ? o.frames : DefaultFrames(demo);
+    std::vector<uint8_t> images[4];
+    for (int i = 0; i < 4; ++i) images[i] = Replay(device, ctx, s, methods[i], frames);
+    for (int i = 0; i < 4; ++i) {
+      double rmse = renderer::Rmse(images[i], images[3]);
+      std::printf("%-8s %-8s %10.3f %10.2f\n", renderer::ToString(demo), renderer::ToString(methods[i]), rmse,
+                  renderer::Psnr(rmse));
+    }
+    uint32_t w = 0;
+    if (demo == TranslucencyDemo::Smoke) {
+      auto fig = SideBySide({images[0], images[1]}, o.width, o.height, &w);
+      WritePng((std::filesystem::path(o.out) / "fig1_smoke_alpha_wboit.png").string(), fig, w, o.height);
+      auto ref = SideBySide({images[1], images[2], images[3]}, o.width, o.height, &w);
+      WritePng((std::filesystem::path(o.out) / "smoke_wboit_colored_sorted.png").string(), ref, w, o.height);
+    } else {
+      auto fig = SideBySide({images[1], images[2], images[3]}, o.width, o.height, &w);
+      WritePng((std::filesystem::path(o.out) / "fig_shards_wboit_colored_sorted.png").string(), fig, w, o.height);
+    }
+  }
+  return 0;
+}
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
+  const int frames = o.frames > 0 ? o.frames : 60;
+  const int warmup = 60;  // the smoke reaches its steady state before timing starts
+  std::printf("replay --bench on %s, %ux%u, %d timed frames after %d warm-up frames\n", device->GetAdapterName(),
+              o.width, o.height, frames, warmup);
+  std::printf("%-7s %-8s %9s %9s %9s %9s %9s %9s %6s\n", "demo", "method", "frame ms", "FPS", "opaque", "update",
+              "3D pass", "compose", "GPU");
+  for (TranslucencyDemo demo : {TranslucencyDemo::Smoke, TranslucencyDemo::Shards}) {
+    double frameMs[4] = {};
+    const TranslucencyMethod methods[4] = {TranslucencyMethod::Alpha, TranslucencyMethod::Wboit,
+                                           TranslucencyMethod::Colored, TranslucencyMethod::Sorted};
+    for (int mi = 0; mi < 4; ++mi) {
+      renderer::TranslucencySettings s;
+      s.demo = demo;
+      s.width = o.width, s.height = o.height;
+      s.timestamps = true;
+      auto t = Make(device, ctx, s);
+      for (int i = 0; i < warmup; ++i) {
+        t->RenderFrame(methods[mi]);
+        t->LastTimes();
+      }
+      std::vector<double> wall, opaque, update, pass3d, compose, gpu;
+      for (int i = 0; i < frames; ++i) {
+        auto start = std::chrono::steady_clock::now();
+        t->RenderFrame(methods[mi]);
+        renderer::PassTimes times = t->LastTimes();  // waits for the GPU
+        wall.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        if (!times.valid) continue;
+        opaque.push_back(times.opaqueMs), update.push_back(times.updateMs), pass3d.push_back(times.transparencyMs);
+        compose.push_back(times.composeMs), gpu.push_back(times.totalMs);
+      }
+      frameMs[mi] = Median(wall);
+      std::printf("%-7s %-8s %9.3f %9.1f %9.3f %9.3f %9.3f %9.3f %6.3f\n", renderer::ToString(demo),
+                  renderer::ToString(methods[mi]), frameMs[mi], 1000.0 / frameMs[mi], Median(opaque), Median(update),
+                  Median(pass3d), Median(compose), Median(gpu));
+    }
+    std::printf("%-7s WBOIT/alpha frame-time ratio: %.3f (paper, smoke on D3D11: 1.183/0.935 = 1.265)\n",
+                renderer::ToString(demo), frameMs[1] / frameMs[0]);
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  bool haveMethod = false;
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) Fail("missing value after " + a);
+      return argv[++i];
+    };
+    if (a == "--demo") {
+      if (!renderer::ParseDemo(next(), &o.demo)) Fail("--demo takes smoke or shards");
+    } else if (a == "--method") {
+      if (!renderer::ParseMethod(next(), &o.method)) Fail("--method takes alpha, wboit, colored or sorted");
+      haveMethod = true;
+    } else if (a == "--frames") {
+      o.frames = std::atoi(next().c_str());
+    } else if (a == "--size") {
+      std::string v = next();
+      if (std::sscanf(v.c_str(), "%ux%u", &o.width, &o.height) != 2 || !o.width || !o.height)
+        Fail("--size takes WxH");
+    } else if (a == "--out") {
+      o.out = next();
+    } else if (a == "--figures") {
+      o.figures = true;
+    } else if (a == "--bench") {
+      o.bench = true;
+    } else if (a == "--all-frames") {
+      o.allFrames = true;
+    } else if (a == "--literal-table4") {
+      o.literalTable4 = true;
+    } else {
+      Fail("unknown argument " + a +
+           "\nusage: replay --demo smoke|shards --method alpha|wboit|colored|sorted [--frames N] [--size WxH] --out DIR"
+           "\n       replay --figures --out DIR\n       replay --bench [--frames N]");
+    }
+  }
+  (void)haveMethod;
+  rhi::DEVICE_OPTIONS options;
+  options.OnMessage = [](rhi::MESSAGE_CATEGORY, rhi::MESSAGE_SEVERITY severity, const char* text) {
+    const bool error = severity <= rhi::MESSAGE_SEVERITY_ERROR;
+    if (error) ++gErrors;
+    std::fprintf(stderr, "%s: %s\n", error ? "error" : "message", text);
+  };
+  rhi::ComPtr<rhi::Device> device;
+  rhi::ComPtr<rhi::DeviceContext> ctx;
+  if (rhi::FAILED(rhi::CreateDevice(&options, device.GetAddressOf(), ctx.GetAddressOf())))
+    Fail("CreateDevice failed (is a Vulkan driver, e.g. mesa-vulkan-drivers, installed?)");
+  int rc = o.bench ? RunBench(device.Get(), ctx.Get(), o)
+           : o.figures ? RunFigures(device.Get(), ctx.Get(), o)
+                       : RunOne(device.Get(), ctx.Get(), o);
+  if (gErrors > 0) Fail(std::to_string(gErrors) + " RHI error message(s) (see above)");
+  return rc;
+}

@@ -1,0 +1,112 @@
+// The translucency demos of document 000 (SPEC.md), replayed deterministically.
+//
+// Frame order of the paper, one function per pass so that each maps 1:1 onto an
+// effect pass later:
+//   OpaquePass        coloured stripes, floor and cubes into the frame + depth
+//   ParticleUpdatePass the existing ParticleSystem::Update (Draw(1,0)-style first
+//                      frame, DrawAuto after); smoke demo only
+//   TransparencyPass   the 3D transparency pass of the chosen method
+//   ComposePass        the 2D composing pass (WBOIT: Table 2; colored: Table 4)
+// Methods: Alpha (plain OVER in buffer order), Wboit (Tables 1 + 2), Colored
+// (Tables 3 + corrected 4, or the literal Table 4 on request), Sorted (the
+// reference: OVER back to front, sorted on the CPU: particles read back, shard
+// instances reordered).
+// Everything is seeded and the time step is fixed: frame N is a pure function of
+// the settings and N.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "renderer/particle_system.h"
+#include "rhi/rhi.h"
+
+namespace renderer {
+
+enum class TranslucencyDemo { Smoke, Shards };
+enum class TranslucencyMethod { Alpha, Wboit, Colored, Sorted };
+
+const char* ToString(TranslucencyDemo demo);
+const char* ToString(TranslucencyMethod method);
+bool ParseDemo(const std::string& text, TranslucencyDemo* demo);
+bool ParseMethod(const std::string& text, TranslucencyMethod* method);
+
+struct TranslucencySettings {
+  TranslucencyDemo demo = TranslucencyDemo::Smoke;
+  uint32_t width = 640, height = 360;
+  uint32_t seed = 1234;
+  // Smoke.
+  ParticleRule rule{48, 3, 40, 60};
+  float particleSize = 0.3f;
+  float secondsPerUpdate = 1.0f / 40.0f;
+  // Shards.
+  uint32_t shardCount = 3000;
+  float shardSurfaceTint = 0.5f;  // 0: neutral surface colour (tint only in transmission)
+  bool shardsAllRed = false;      // every shard transmits (1, 0.15, 0.15)
+  // Background.
+  bool neutralBackground = false;  // a plain grey wall instead of coloured stripes
+  bool literalTable4 = false;      // colored: compose with Table 4 as printed
+  bool timestamps = false;         // per-pass TIMESTAMP queries (see LastTimes)
+  bool countParticles = false;     // SO_STATISTICS around every update (see particleCount)
+};
+
+struct PassTimes {
+  bool valid = false;  // false when the disjoint query said disjoint
+  double opaqueMs = 0, updateMs = 0, transparencyMs = 0, composeMs = 0, totalMs = 0;
+};
+
+class Translucency {
+ public:
+  static std::unique_ptr<Translucency> Create(rhi::Device* device, rhi::DeviceContext* context,
+                                              const TranslucencySettings& settings, std::string* error);
+  ~Translucency();
+
+  // Renders the next frame (frame index frame(), then advances it).
+  void RenderFrame(TranslucencyMethod method);
+  // The passes, in the paper's order (RenderFrame calls them).
+  void OpaquePass();
+  void ParticleUpdatePass();
+  void TransparencyPass(TranslucencyMethod method);
+  void ComposePass(TranslucencyMethod method);
+
+  // The frame as tightly packed RGBA8 rows.
+  std::vector<uint8_t> ReadFrame();
+  // Waits for and returns the pass times of the last frame (settings.timestamps).
+  PassTimes LastTimes();
+
+  uint32_t frame() const { return frame_; }
+  // Live particles (emitters included) after the last update, from SO_STATISTICS;
+  // valid with settings.countParticles or the sorted method.
+  uint64_t particleCount() const { return particleCount_; }
+  const TranslucencySettings& settings() const { return settings_; }
+  ParticleSystem* particles() const { return particles_.get(); }
+
+  // The fixed camera of frame n.
+  Camera CameraForFrame(uint32_t n) const;
+
+ private:
+  struct Impl;
+  Translucency() = default;
+  bool Initialize(rhi::Device* device, rhi::DeviceContext* context, const TranslucencySettings& settings,
+                  std::string* error);
+  void DrawSmoke(TranslucencyMethod method);
+  void DrawShards(TranslucencyMethod method);
+  void Timestamp(int index);
+
+  TranslucencySettings settings_;
+  uint32_t frame_ = 0;
+  uint64_t particleCount_ = 0;
+  Camera camera_;
+  std::unique_ptr<ParticleSystem> particles_;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Image distance of two RGBA8 images over RGB, in 8-bit steps.
+double Rmse(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b);
+double Psnr(double rmse);  // dB; infinity when rmse == 0
+
+}  // namespace renderer

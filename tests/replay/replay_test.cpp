@@ -1,0 +1,119 @@
+// The translucency demos of document 000 at test size (128x72, few frames),
+// validation layer on: OIT quality against the sorted reference, coloured OIT's
+// transmission, the particle count against the CPU model, determinism.
+#include <cmath>
+
+#include "gpu_test.h"
+#include "renderer/particle_rule.h"
+#include "renderer/translucency.h"
+
+namespace rhi_test {
+namespace {
+
+using renderer::Translucency;
+using renderer::TranslucencyDemo;
+using renderer::TranslucencyMethod;
+using renderer::TranslucencySettings;
+
+class ReplayTest : public GpuTest {
+ protected:
+  static TranslucencySettings Small(TranslucencyDemo demo) {
+    TranslucencySettings s;
+    s.demo = demo;
+    s.width = 128, s.height = 72;
+    s.rule = {24, 2, 15, 20};  // ~1k particles, steady after 35 updates
+    s.shardCount = 600;
+    return s;
+  }
+  std::vector<uint8_t> Render(const TranslucencySettings& s, TranslucencyMethod method, int frames,
+                              uint64_t* count = nullptr) {
+    std::string error;
+    auto t = Translucency::Create(device.Get(), context.Get(), s, &error);
+    EXPECT_NE(t, nullptr) << error;
+    if (!t) return {};
+    for (int i = 0; i < frames; ++i) t->RenderFrame(method);
+    if (count) *count = t->particleCount();
+    return t->ReadFrame();
+  }
+};
+
+TEST_F(ReplayTest, WboitIsCloserToSortedThanAlphaBlendingOnSmoke) {
+  const TranslucencySettings s = Small(TranslucencyDemo::Smoke);
+  const int frames = 40;
+  auto sorted = Render(s, TranslucencyMethod::Sorted, frames);
+  auto alpha = Render(s, TranslucencyMethod::Alpha, frames);
+  auto wboit = Render(s, TranslucencyMethod::Wboit, frames);
+  const double alphaRmse = renderer::Rmse(alpha, sorted), wboitRmse = renderer::Rmse(wboit, sorted);
+  RecordProperty("alpha_rmse", std::to_string(alphaRmse));
+  RecordProperty("wboit_rmse", std::to_string(wboitRmse));
+  std::printf("smoke 128x72, %d frames: RMSE vs sorted: alpha %.3f, wboit %.3f\n", frames, alphaRmse, wboitRmse);
+  EXPECT_GT(alphaRmse, 0.5) << "the smoke must overlap enough for order to matter";
+  EXPECT_LT(wboitRmse, alphaRmse);
+}
+
+// Mean over the pixels the shards cover of (R / G) with shards, and without.
+struct Tint {
+  double withShards = 0, without = 0;
+  int pixels = 0;
+};
+Tint RedRatio(const std::vector<uint8_t>& shards, const std::vector<uint8_t>& empty) {
+  Tint t;
+  for (size_t i = 0; i < shards.size(); i += 4) {
+    int diff = std::abs(int(shards[i]) - empty[i]) + std::abs(int(shards[i + 1]) - empty[i + 1]) +
+               std::abs(int(shards[i + 2]) - empty[i + 2]);
+    if (diff < 12) continue;  // not covered
+    t.withShards += (shards[i] + 1.0) / (shards[i + 1] + 1.0);
+    t.without += (empty[i] + 1.0) / (empty[i + 1] + 1.0);
+    ++t.pixels;
+  }
+  if (t.pixels) t.withShards /= t.pixels, t.without /= t.pixels;
+  return t;
+}
+
+TEST_F(ReplayTest, ColoredOitTintsTheBackgroundAndWboitDoesNot) {
+  TranslucencySettings s = Small(TranslucencyDemo::Shards);
+  s.shardsAllRed = true;        // every shard transmits (1, .15, .15)
+  s.shardSurfaceTint = 0;       // and reflects neutral light
+  s.neutralBackground = true;   // over a grey wall
+  TranslucencySettings none = s;
+  none.shardCount = 0;
+  auto empty = Render(none, TranslucencyMethod::Wboit, 1);
+  auto colored = Render(s, TranslucencyMethod::Colored, 1);
+  auto wboit = Render(s, TranslucencyMethod::Wboit, 1);
+  Tint c = RedRatio(colored, empty), w = RedRatio(wboit, empty);
+  std::printf("R/G over covered pixels: background %.3f, colored %.3f (%d px), wboit %.3f (%d px)\n", c.without,
+              c.withShards, c.pixels, w.withShards, w.pixels);
+  ASSERT_GT(c.pixels, 200);
+  ASSERT_GT(w.pixels, 200);
+  EXPECT_NEAR(c.without, 1.0, 0.05) << "the background is grey";
+  EXPECT_GT(c.withShards, 1.3 * c.without) << "colored OIT lets red through";
+  EXPECT_NEAR(w.withShards, w.without, 0.05) << "WBOIT ignores transmission";
+}
+
+TEST_F(ReplayTest, ParticleCountAfterNFramesEqualsTheCpuModel) {
+  TranslucencySettings s = Small(TranslucencyDemo::Smoke);
+  s.countParticles = true;
+  const int frames = 45;
+  uint64_t count = 0;
+  Render(s, TranslucencyMethod::Wboit, frames, &count);
+  renderer::ParticleCountModel model(s.rule);
+  uint64_t expected = 0;
+  for (int i = 0; i < frames; ++i) expected = model.Step();
+  EXPECT_EQ(count, expected);
+  EXPECT_GT(count, 500u);
+}
+
+TEST_F(ReplayTest, TheSameFrameRenderedTwiceIsBitIdentical) {
+  for (TranslucencyDemo demo : {TranslucencyDemo::Smoke, TranslucencyDemo::Shards})
+    for (TranslucencyMethod method : {TranslucencyMethod::Wboit, TranslucencyMethod::Colored,
+                                      TranslucencyMethod::Sorted}) {
+      const TranslucencySettings s = Small(demo);
+      const int frames = demo == TranslucencyDemo::Smoke ? 20 : 2;
+      auto a = Render(s, method, frames), b = Render(s, method, frames);
+      ASSERT_FALSE(a.empty());
+      EXPECT_TRUE(a == b) << renderer::ToString(demo) << " " << renderer::ToString(method);
+    }
+}
+
+}  // namespace
+}  // namespace rhi_test

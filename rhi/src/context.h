@@ -185,6 +185,8 @@ class ContextImpl final : public DeviceContext {
   const GraphicsPipeline* PrepareDraw(const char* call, TrackedResource* indirect = nullptr,
                                       const Access& indirectUse = uses::kIndirectArgs);
   void TrackDrawResources(const GraphicsPipeline& pipeline, TrackedResource* indirect, const Access& indirectUse);
+  // Builds the pipeline key from the bound state and finds or builds the pipeline.
+  const GraphicsPipeline* LookUpPipeline(const char* call);
   void BeginRendering();
   void BindGraphicsState(const GraphicsPipeline& pipeline);
   void SetViewportsAndScissors();
@@ -232,6 +234,9 @@ class ContextImpl final : public DeviceContext {
       descriptorScratch_;
   bool renderTargetsChanged_ = true;
   const GraphicsPipeline* boundPipeline_ = nullptr;
+  // The pipeline of the current state; rebuilt from the key only after a
+  // setter that enters the key (shaders, layout, states, targets, topology).
+  const GraphicsPipeline* currentPipeline_ = nullptr;
   // Vulkan dynamic state that must be recorded again. It survives pipeline
   // binds (every pipeline declares it dynamic), except viewport and scissor,
   // which pipelines that rasterize nothing lack.

@@ -147,6 +147,15 @@ const GraphicsPipeline* ContextImpl::PrepareDraw(const char* call, TrackedResour
     ReportDrawError(std::string(call) + ": no vertex shader is bound; the draw is skipped");
     return nullptr;
   }
+  const GraphicsPipeline* pipeline = currentPipeline_ ? currentPipeline_ : LookUpPipeline(call);
+  if (!pipeline) return nullptr;
+  currentPipeline_ = pipeline;
+  TrackDrawResources(*pipeline, indirect, indirectUse);
+  BindGraphicsState(*pipeline);
+  return pipeline;
+}
+
+const GraphicsPipeline* ContextImpl::LookUpPipeline(const char* call) {
   GraphicsPipelineKey key;
   GraphicsPipelineInputs inputs;
   for (size_t i = 0; i < kGraphicsStages.size(); ++i) {
@@ -180,12 +189,7 @@ const GraphicsPipeline* ContextImpl::PrepareDraw(const char* call, TrackedResour
 
   std::string error;
   const GraphicsPipeline* pipeline = device_->pipelines().Graphics(key, inputs, &error);
-  if (!pipeline) {
-    ReportDrawError(std::string(call) + ": " + error + "; the draw is skipped");
-    return nullptr;
-  }
-  TrackDrawResources(*pipeline, indirect, indirectUse);
-  BindGraphicsState(*pipeline);
+  if (!pipeline) ReportDrawError(std::string(call) + ": " + error + "; the draw is skipped");
   return pipeline;
 }
 

@@ -25,6 +25,7 @@ ContextImpl::~ContextImpl() {
 
 void ContextImpl::IASetInputLayout(InputLayout* pInputLayout) {
   inputLayout_ = static_cast<InputLayoutImpl*>(pInputLayout);
+  currentPipeline_ = nullptr;
 }
 
 void ContextImpl::IASetVertexBuffers(UINT StartSlot, UINT NumBuffers, Buffer* const* ppVertexBuffers,
@@ -51,6 +52,7 @@ void ContextImpl::IASetIndexBuffer(Buffer* pIndexBuffer, DXGI_FORMAT Format, UIN
 
 void ContextImpl::IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY Topology) {
   topology_ = Topology;
+  currentPipeline_ = nullptr;
   dynamicDirty_.topology = true;
 }
 
@@ -58,6 +60,7 @@ void ContextImpl::SetShader(ShaderStage stage, Bindable* object, std::shared_ptr
   StageState& state = stages_[static_cast<uint32_t>(stage)];
   state.shaderObject = object;
   state.shader = std::move(code);
+  currentPipeline_ = nullptr;
   descriptorsDirty_ = true;
 }
 
@@ -135,6 +138,7 @@ void ContextImpl::SOGetTargets(UINT NumBuffers, Buffer** ppSOTargets) {
 
 void ContextImpl::RSSetState(RasterizerState* pRasterizerState) {
   rasterizer_ = static_cast<RasterizerStateImpl*>(pRasterizerState);
+  currentPipeline_ = nullptr;
   dynamicDirty_.viewport = true;  // ScissorEnable decides the scissor
 }
 
@@ -159,11 +163,13 @@ void ContextImpl::OMSetRenderTargets(UINT NumViews, RenderTargetView* const* ppR
   auto* depth = static_cast<DepthStencilViewImpl*>(pDepthStencilView);
   if (depth) UnbindFromReads(depth->resource());
   depthStencil_ = depth;
+  currentPipeline_ = nullptr;
   renderTargetsChanged_ = true;
 }
 
 void ContextImpl::OMSetBlendState(BlendState* pBlendState, const FLOAT BlendFactor[4], UINT SampleMask) {
   blendState_ = static_cast<BlendStateImpl*>(pBlendState);
+  currentPipeline_ = nullptr;
   // D3D11: a NULL factor means (1,1,1,1).
   if (BlendFactor)
     std::copy(BlendFactor, BlendFactor + 4, blendFactor_.begin());
@@ -175,6 +181,7 @@ void ContextImpl::OMSetBlendState(BlendState* pBlendState, const FLOAT BlendFact
 
 void ContextImpl::OMSetDepthStencilState(DepthStencilState* pDepthStencilState, UINT StencilRef) {
   depthStencilState_ = static_cast<DepthStencilStateImpl*>(pDepthStencilState);
+  currentPipeline_ = nullptr;
   stencilRef_ = StencilRef;
   dynamicDirty_.stencilRef = true;
 }
@@ -209,6 +216,7 @@ void ContextImpl::UnbindFromReads(Resource* resource) {
 
 void ContextImpl::ClearState() {
   inputLayout_.Reset();
+  currentPipeline_ = nullptr;
   vertexBuffers_ = {};
   indexBuffer_ = {};
   topology_ = PRIMITIVE_TOPOLOGY_UNDEFINED;

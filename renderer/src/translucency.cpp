@@ -409,7 +409,10 @@ bool Translucency::Initialize(Device* device, DeviceContext* context, const Tran
     ParticleSettings ps_;
     ps_.rule = s.rule;
     ps_.emitterCenter = {0, 0.3f, 0.5f};
-    ps_.emitterRadius = 1.8f;
+    // A negative radius mirrors the emitter ring: emitters (and so their particles, in
+    // buffer order) run from the front of the ring to its back, so unsorted OVER draws
+    // near smoke first and far smoke on top: the failure of the paper's Fig. 1.
+    ps_.emitterRadius = -1.8f;
     ps_.spread = {0.5f, 0.2f, 0.5f};
     ps_.speedUp = 1.2f;
     ps_.acceleration = {0.35f, 0.2f, 0.0f};

@@ -1,6 +1,8 @@
 #include "blend_matrix.h"
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <random>
 #include <sstream>
@@ -231,6 +233,12 @@ std::string CaseFailure::Describe() const {
     << Bits(expected) << " actual " << Bits(actual) << " steps (";
   for (int c = 0; c < 4; ++c)
     s << (steps[c] == ref::kIncomparable ? std::string("inc") : std::to_string(steps[c])) << (c < 3 ? "," : ")");
+  s.precision(3);
+  s << " term bound (|err| / k*unit(m) @ m):";
+  for (int c = 0; c < 4; ++c) {
+    if (bound[c] > 0) s << " " << "RGBA"[c] << " " << error[c] << "/" << bound[c] << "@" << magnitude[c];
+  }
+  if (withinOperandBound) s << "; within k*unit(max operand)";
   return s.str();
 }
 
@@ -334,32 +342,56 @@ MatrixResult RunBlendMatrix(Gpu& gpu, const MatrixOptions& options) {
 
     FormatStats stats{format};
     stats.toleranceSteps = ref::Tolerance(format).steps;
+    for (int ch = 0; ch < 4; ++ch) stats.termK[ch] = ref::BlendTermK(format, ch).k;
     for (UINT k = 0; k < draws; ++k) {
       if (!drawn(k)) continue;
       ++stats.draws;
       const RENDER_TARGET_BLEND_DESC& rt = descs[k];
       for (UINT j = 0; j < n; ++j) {
         const UINT i = k * n + j;
-        const StoredColor expected =
-            ref::BlendResult(format, rt, factors[k], src0[i], src1[i], dest[i]).stored;
+        const ref::BlendOutput out = ref::BlendResult(format, rt, factors[k], src0[i], src1[i], dest[i]);
+        const StoredColor& expected = out.stored;
         const StoredColor actual =
             ref::UnpackPixel(format, std::span<const uint8_t>(bytes.data() + i * bpp, bpp));
-        const bool ok = ref::WithinTolerance(format, expected, actual);
+        const ref::BlendVerdict verdict = ref::CompareBlend(format, out, actual);
+        const bool ok = verdict.ok;
         std::array<uint32_t, 4> steps{};
+        std::array<double, 4> error{}, magnitude{}, bound{};
         for (int ch = 0; ch < 4; ++ch) {
+          const ref::ChannelVerdict& v = verdict.channels[ch];
           steps[ch] = ref::StoredDistance(format, ch, expected.bits[ch], actual.bits[ch]);
           if (steps[ch] != ref::kIncomparable) stats.maxSteps[ch] = std::max(stats.maxSteps[ch], steps[ch]);
+          if (v.termBoundApplies) {
+            error[ch] = v.error;
+            magnitude[ch] = v.m;
+            bound[ch] = v.bound;
+            if (v.unit > 0) stats.maxTermRatio[ch] = std::max(stats.maxTermRatio[ch], v.error / v.unit);
+          }
         }
         stats.tally.Add(ok);
+        if (ok && verdict.usedTermBound) ++stats.neededTermBound;
         for (BLEND f : AllFactors())
           if (rt.SrcBlend == f || rt.DestBlend == f || rt.SrcBlendAlpha == f || rt.DestBlendAlpha == f)
             result.perFactor[f].Add(ok);
         result.perOp[rt.BlendOp].Add(ok);
         if (rt.BlendOpAlpha != rt.BlendOp) result.perOp[rt.BlendOpAlpha].Add(ok);
         if (!ok) {
+          // Would a bound at the unscaled operands' magnitude cover it? (reported, not applied)
+          bool withinOperand = true;
+          for (int ch = 0; ch < 4; ++ch) {
+            const ref::ChannelVerdict& v = verdict.channels[ch];
+            if (v.ok()) continue;
+            if (!v.termBoundApplies) { withinOperand = false; break; }
+            const double big = std::max({v.m, std::fabs(static_cast<double>(out.terms.srcOperand[ch])),
+                                         std::fabs(static_cast<double>(out.terms.destOperand[ch]))});
+            withinOperand = withinOperand && v.error <= ref::BlendTermK(format, ch).k * ref::BlendUnit(format, ch, big);
+          }
+          if (withinOperand) ++result.failuresWithinOperandBound;
           ++result.failureCount;
           if (result.failures.size() < MatrixResult::kMaxKeptFailures)
-            result.failures.push_back({format, rt, factors[k], src0[i], src1[i], dest[i], expected, actual, steps});
+            result.failures.push_back(
+                {format, rt, factors[k], src0[i], src1[i], dest[i], expected, actual, steps, error, magnitude, bound,
+                 withinOperand});
         }
       }
     }

@@ -1,7 +1,8 @@
 // The exhaustive blend matrix: every (SrcBlend, DestBlend, BlendOp) triple for
 // RGB and every legal one for alpha, on every render-target format the reference
 // model knows, with seeded random sources, destinations and blend factors,
-// checked pixel by pixel against rhi::reference::BlendResult + WithinTolerance.
+// checked pixel by pixel against rhi::reference::BlendResult + CompareBlend (the
+// stored-step table, or for ADD/SUBTRACT/REV_SUBTRACT the blend-term bound).
 //
 // Batching: one 256x256 target per format; every draw covers `casesPerTriple`
 // consecutive pixels of one row (one case per pixel) with its own blend state and
@@ -62,6 +63,12 @@ struct CaseFailure {
   Float4 factor, src0, src1;
   StoredColor dest, expected, actual;
   std::array<uint32_t, 4> steps;  // distance per channel (UINT32_MAX: incomparable)
+  // Term bound per channel (tolerance.h): linear error, m, k*unit(m); bound 0 where it does not apply.
+  std::array<double, 4> error{}, magnitude{}, bound{};
+  // Diagnosis only (not applied): the channel's error is within k*unit(M) with
+  // M = max(m, |Csrc|, |Cdst|), the unscaled operands, as a rearranged
+  // evaluation such as dst + f*(src - dst) would produce.
+  bool withinOperandBound = false;
   std::string Describe() const;
 };
 
@@ -76,6 +83,12 @@ struct FormatStats {
   std::array<uint32_t, 4> maxSteps{};      // largest distance seen per channel (comparable ones)
   std::array<uint32_t, 4> toleranceSteps{};
   uint64_t draws = 0;
+  // Cases that failed the stored-step table and passed only by the blend-term
+  // bound (|gpu-ref| <= k*unit(m), ADD/SUBTRACT/REV_SUBTRACT channels).
+  uint64_t neededTermBound = 0;
+  // Largest |gpu-ref| / unit(m) over channels where the term bound applies, and k.
+  std::array<double, 4> maxTermRatio{};
+  std::array<double, 4> termK{};
 };
 
 struct MatrixResult {
@@ -84,6 +97,7 @@ struct MatrixResult {
   std::map<rhi::BLEND_OP, Tally> perOp;    // a case counts for its RGB op and its alpha op
   std::vector<CaseFailure> failures;       // at most kMaxKeptFailures kept...
   uint64_t failureCount = 0;               // ...of this many
+  uint64_t failuresWithinOperandBound = 0; // failures within k*unit(max(m, |Csrc|, |Cdst|)) (diagnosis)
   std::vector<std::string> validation;     // validation-layer messages seen
   std::vector<std::string> refusals;       // refusals seen (unexpected ones)
   static constexpr size_t kMaxKeptFailures = 400;

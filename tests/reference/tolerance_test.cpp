@@ -1,6 +1,10 @@
 // The tolerance table and the stored-value comparison.
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cmath>
+
+#include "rhi_reference/blend.h"
 #include "rhi_reference/float16.h"
 #include "rhi_reference/tolerance.h"
 
@@ -62,6 +66,216 @@ TEST(Tolerance, InfinityAndNan) {
 TEST(Tolerance, UintIsExact) {
   EXPECT_TRUE(WithinTolerance(DXGI_FORMAT_R32_UINT, StoredColor{{42, 0, 0, 0}}, StoredColor{{42, 0, 0, 0}}));
   EXPECT_FALSE(WithinTolerance(DXGI_FORMAT_R32_UINT, StoredColor{{42, 0, 0, 0}}, StoredColor{{43, 0, 0, 0}}));
+}
+
+
+// ---------------------------------------------------------------------------
+// The blend-term bound: |gpu - ref| <= k * unit(m), m = max(|Cs*Fs|, |Cd*Fd|, |r|),
+// ADD / SUBTRACT / REV_SUBTRACT only.
+
+RENDER_TARGET_BLEND_DESC Blend(BLEND src, BLEND dest, BLEND_OP op) {
+  RENDER_TARGET_BLEND_DESC b;
+  b.BlendEnable = TRUE;
+  b.SrcBlend = src;
+  b.DestBlend = dest;
+  b.BlendOp = op;
+  b.SrcBlendAlpha = BLEND_ONE;
+  b.DestBlendAlpha = BLEND_ZERO;
+  b.BlendOpAlpha = BLEND_OP_ADD;
+  return b;
+}
+
+constexpr Float4 kOnes{1, 1, 1, 1};
+
+TEST(TermBound, KAndUnits) {
+  EXPECT_EQ(BlendTermK(DXGI_FORMAT_R8G8B8A8_UNORM, 0).k, 2.0);
+  EXPECT_EQ(BlendTermK(DXGI_FORMAT_R8G8B8A8_UNORM_SRGB, 0).k, 2.6);
+  EXPECT_EQ(BlendTermK(DXGI_FORMAT_R8G8B8A8_UNORM_SRGB, 3).k, 2.0);  // alpha is linear UNORM
+  EXPECT_EQ(BlendTermK(DXGI_FORMAT_R16_FLOAT, 0).k, 2.25);
+  EXPECT_EQ(BlendTermK(DXGI_FORMAT_R32_FLOAT, 0).k, 2.5);
+  EXPECT_EQ(BlendTermK(DXGI_FORMAT_R32_UINT, 0).k, 0.0);
+  EXPECT_EQ(BlendTermK(DXGI_FORMAT_R32_FLOAT, 1).k, 0.0);  // absent channel
+  EXPECT_NE(std::string(BlendTermK(DXGI_FORMAT_R8_UNORM, 0).reason).find("17.5"), std::string::npos);
+
+  EXPECT_DOUBLE_EQ(BlendUnit(DXGI_FORMAT_R8_UNORM, 0, 0.7), 1.0 / 255.0);
+  EXPECT_DOUBLE_EQ(BlendUnit(DXGI_FORMAT_R10G10B10A2_UNORM, 3, 0.7), 1.0 / 3.0);
+  EXPECT_EQ(BlendUnit(DXGI_FORMAT_R32_FLOAT, 0, 1.5), std::ldexp(1.0, -23));
+  EXPECT_EQ(BlendUnit(DXGI_FORMAT_R32_FLOAT, 0, 34.5), std::ldexp(1.0, -18));
+  EXPECT_EQ(BlendUnit(DXGI_FORMAT_R32_FLOAT, 0, 0.0), std::ldexp(1.0, -149));
+  EXPECT_EQ(BlendUnit(DXGI_FORMAT_R16_FLOAT, 0, 1.5), std::ldexp(1.0, -10));
+  EXPECT_EQ(BlendUnit(DXGI_FORMAT_R16_FLOAT, 0, 0.0), std::ldexp(1.0, -24));
+  // sRGB near black: the linear segment, one code = 1 / (255 * 12.92) in linear.
+  EXPECT_NEAR(BlendUnit(DXGI_FORMAT_R8G8B8A8_UNORM_SRGB, 0, 0.001), 1.0 / (255.0 * 12.92), 1e-7);
+  // sRGB steps widen with m (the decode is convex), and exceed a UNORM8 step near white.
+  EXPECT_LT(BlendUnit(DXGI_FORMAT_R8G8B8A8_UNORM_SRGB, 0, 0.05), BlendUnit(DXGI_FORMAT_R8G8B8A8_UNORM_SRGB, 0, 0.5));
+  EXPECT_GT(BlendUnit(DXGI_FORMAT_R8G8B8A8_UNORM_SRGB, 0, 1.0), 1.0 / 255.0);
+}
+
+TEST(TermBound, ReferenceReportsTheTerms) {
+  // SUBTRACT: terms recorded, m = the larger product.
+  const BlendOutput sub = BlendResult(DXGI_FORMAT_R32G32B32A32_FLOAT, Blend(BLEND_SRC_ALPHA, BLEND_ONE, BLEND_OP_SUBTRACT),
+                                      kOnes, Float4{0.75f, 2.0f, -4.0f, 0.5f}, {},
+                                      Encode(DXGI_FORMAT_R32G32B32A32_FLOAT, Float4{0.25f, 1.0f, -1.5f, 0.0f}));
+  EXPECT_EQ(sub.terms.srcTerm[0], 0.375f);
+  EXPECT_EQ(sub.terms.destTerm[0], 0.25f);
+  EXPECT_EQ(sub.terms.result[0], 0.125f);
+  EXPECT_TRUE(sub.terms.arithmetic[0]);
+  EXPECT_EQ(TermMagnitude(sub.terms, 0), 0.375);
+  EXPECT_EQ(TermMagnitude(sub.terms, 2), 2.0);  // -4*0.5 - (-1.5) = -0.5: |src term| 2 is the largest
+  // MIN / MAX, unblended writes and masked channels carry no arithmetic.
+  const BlendOutput min = BlendResult(DXGI_FORMAT_R32_FLOAT, Blend(BLEND_ONE, BLEND_ONE, BLEND_OP_MIN), kOnes,
+                                      Float4{3, 0, 0, 0}, {}, StoredColor{});
+  EXPECT_FALSE(min.terms.arithmetic[0]);
+  EXPECT_EQ(TermMagnitude(min.terms, 0), 0.0);
+  RENDER_TARGET_BLEND_DESC off = Blend(BLEND_ONE, BLEND_ONE, BLEND_OP_ADD);
+  off.BlendEnable = FALSE;
+  EXPECT_FALSE(BlendResult(DXGI_FORMAT_R32_FLOAT, off, kOnes, Float4{3, 0, 0, 0}, {}, StoredColor{}).terms.arithmetic[0]);
+  RENDER_TARGET_BLEND_DESC masked = Blend(BLEND_ONE, BLEND_ONE, BLEND_OP_ADD);
+  masked.RenderTargetWriteMask = COLOR_WRITE_ENABLE_GREEN;
+  const BlendOutput m = BlendResult(DXGI_FORMAT_R8G8B8A8_UNORM, masked, kOnes, Float4{0.5f, 0.5f, 0, 0}, {}, StoredColor{});
+  EXPECT_FALSE(m.terms.arithmetic[0]);
+  EXPECT_TRUE(m.terms.arithmetic[1]);
+  // UINT targets are never blended.
+  EXPECT_FALSE(BlendResult(DXGI_FORMAT_R32_UINT, Blend(BLEND_ONE, BLEND_ONE, BLEND_OP_ADD), kOnes,
+                           UintRegister(1, 0, 0, 0), {}, StoredColor{})
+                   .terms.arithmetic[0]);
+}
+
+StoredColor WithChannel(StoredColor c, int channel, uint32_t bits) {
+  c.bits[channel] = bits;
+  return c;
+}
+
+TEST(TermBound, UnormCancellation) {
+  // The lavapipe case: SRC_COLOR/INV_SRC_COLOR/SUBTRACT on blue, src 0.571,
+  // dest 0xc1: 0.571^2 - 0.757*0.429 ~ 0.0013 -> code 0. 2 codes off is inside
+  // (two product roundings, FS 17.5), 3 is outside.
+  constexpr DXGI_FORMAT kFmt = DXGI_FORMAT_R8G8B8A8_UNORM;
+  const RENDER_TARGET_BLEND_DESC b = Blend(BLEND_SRC_COLOR, BLEND_INV_SRC_COLOR, BLEND_OP_SUBTRACT);
+  const BlendOutput ref = BlendResult(kFmt, b, kOnes, Float4{0.2f, 0.2f, 0.571f, 1.0f}, {},
+                                      StoredColor{{0x33, 0x33, 0xc1, 0xff}});
+  ASSERT_EQ(ref.stored.bits[2], 0u);
+  const BlendVerdict two = CompareBlend(kFmt, ref, WithChannel(ref.stored, 2, 2));
+  EXPECT_TRUE(two.ok);
+  EXPECT_TRUE(two.usedTermBound);
+  EXPECT_FALSE(two.channels[2].withinTable);
+  EXPECT_FALSE(CompareBlend(kFmt, ref, WithChannel(ref.stored, 2, 3)).ok);
+  // 1 code needs no allowance.
+  const BlendVerdict one = CompareBlend(kFmt, ref, WithChannel(ref.stored, 2, 1));
+  EXPECT_TRUE(one.ok);
+  EXPECT_FALSE(one.usedTermBound);
+}
+
+TEST(TermBound, UnormMinMaxAndUnblendedKeepOneStep) {
+  constexpr DXGI_FORMAT kFmt = DXGI_FORMAT_R8_UNORM;
+  const BlendOutput min = BlendResult(kFmt, Blend(BLEND_ONE, BLEND_ONE, BLEND_OP_MIN), kOnes,
+                                      Float4{0.5f, 0, 0, 0}, {}, StoredColor{{200, 0, 0, 0}});
+  EXPECT_TRUE(CompareBlend(kFmt, min, WithChannel(min.stored, 0, min.stored.bits[0] + 1)).ok);
+  EXPECT_FALSE(CompareBlend(kFmt, min, WithChannel(min.stored, 0, min.stored.bits[0] + 2)).ok);
+  RENDER_TARGET_BLEND_DESC off = Blend(BLEND_ONE, BLEND_ONE, BLEND_OP_ADD);
+  off.BlendEnable = FALSE;
+  const BlendOutput plain = BlendResult(kFmt, off, kOnes, Float4{0.5f, 0, 0, 0}, {}, StoredColor{});
+  EXPECT_FALSE(CompareBlend(kFmt, plain, WithChannel(plain.stored, 0, plain.stored.bits[0] + 2)).ok);
+}
+
+TEST(TermBound, SrgbCancellationJudgedInLinearSpace) {
+  // The lavapipe case: INV_SRC_ALPHA/BLEND_FACTOR/SUBTRACT on green, src 0.6797
+  // (alpha clamps to 0, so Fs = 1), dest code 0xd7, blend factor clamps to 1:
+  // 0.6797 - 0.6795 -> sRGB code 1. The device wrote 4: 3 codes near black but
+  // 0.0012 in linear, against 2.6 sRGB steps at m = 0.68 (~0.0186): inside.
+  constexpr DXGI_FORMAT kFmt = DXGI_FORMAT_R8G8B8A8_UNORM_SRGB;
+  const RENDER_TARGET_BLEND_DESC b = Blend(BLEND_INV_SRC_ALPHA, BLEND_BLEND_FACTOR, BLEND_OP_SUBTRACT);
+  const Float4 factor{1.09645271f, 1.45093727f, 1.23960161f, 0.684657693f};
+  const Float4 src{-0.00570496917f, 0.679705381f, 0.63694489f, -0.235142946f};
+  const BlendOutput ref = BlendResult(kFmt, b, factor, src, {}, StoredColor{{0xe2, 0xd7, 0xfd, 0xb3}});
+  ASSERT_EQ(ref.stored.bits[1], 1u);
+  const BlendVerdict four = CompareBlend(kFmt, ref, WithChannel(ref.stored, 1, 4));
+  EXPECT_TRUE(four.ok);
+  EXPECT_TRUE(four.usedTermBound);
+  EXPECT_NEAR(four.channels[1].m, 0.6797, 1e-3);
+  // Just outside: the first code whose linear distance exceeds 2.6 steps at m.
+  const double bound = four.channels[1].bound;
+  uint32_t firstOut = 2;
+  while (SrgbToLinear(firstOut / 255.0f) - ref.decoded[1] <= bound) ++firstOut;
+  EXPECT_GT(firstOut, 30u);  // the bound is tens of codes near black at this m
+  EXPECT_TRUE(CompareBlend(kFmt, ref, WithChannel(ref.stored, 1, firstOut - 1)).ok);
+  const BlendVerdict out = CompareBlend(kFmt, ref, WithChannel(ref.stored, 1, firstOut));
+  EXPECT_FALSE(out.ok);
+  EXPECT_GT(out.channels[1].error, out.channels[1].bound);
+}
+
+TEST(TermBound, SrgbSmallOperandsStayTight) {
+  // No large operand: dest code 5 (linear segment) + 0. m ~ 0.0015, one sRGB
+  // step = 1/(255*12.92): 2 codes are within the table, 3 codes (0.9e-3 > 2.6
+  // steps) are outside; a UNORM8-step floor would have let ~30 codes through.
+  constexpr DXGI_FORMAT kFmt = DXGI_FORMAT_R8G8B8A8_UNORM_SRGB;
+  const BlendOutput ref = BlendResult(kFmt, Blend(BLEND_ONE, BLEND_ONE, BLEND_OP_ADD), kOnes, Float4{0, 0, 0, 0}, {},
+                                      StoredColor{{5, 5, 5, 0}});
+  ASSERT_EQ(ref.stored.bits[0], 5u);
+  EXPECT_TRUE(CompareBlend(kFmt, ref, WithChannel(ref.stored, 0, 7)).ok);
+  EXPECT_FALSE(CompareBlend(kFmt, ref, WithChannel(ref.stored, 0, 8)).ok);
+}
+
+TEST(TermBound, Float32Cancellation) {
+  // ONE/ONE/SUBTRACT of (1 + 2^-23) and 1: exact result 2^-23. m = 1 + 2^-23,
+  // ULP(m) = 2^-23, bound 2.5 * 2^-23. A result 2 ULP(m) away (3 * 2^-23) is
+  // millions of ULPs of the result but inside; 3 ULP(m) away is outside.
+  constexpr DXGI_FORMAT kFmt = DXGI_FORMAT_R32_FLOAT;
+  const float ulp = std::ldexp(1.0f, -23);
+  const BlendOutput ref = BlendResult(kFmt, Blend(BLEND_ONE, BLEND_ONE, BLEND_OP_SUBTRACT), kOnes,
+                                      Float4{1.0f + ulp, 0, 0, 0}, {}, Encode(kFmt, Float4{1.0f, 0, 0, 0}));
+  ASSERT_EQ(ref.decoded[0], ulp);
+  const BlendVerdict in = CompareBlend(kFmt, ref, Encode(kFmt, Float4{3 * ulp, 0, 0, 0}));
+  EXPECT_TRUE(in.ok);
+  EXPECT_TRUE(in.usedTermBound);
+  EXPECT_GT(in.channels[0].steps, 1000000u);
+  EXPECT_FALSE(CompareBlend(kFmt, ref, Encode(kFmt, Float4{4 * ulp, 0, 0, 0})).ok);
+  EXPECT_FALSE(CompareBlend(kFmt, ref, Encode(kFmt, Float4{-2 * ulp, 0, 0, 0})).ok);
+  // NaN / INF are never inside.
+  EXPECT_FALSE(CompareBlend(kFmt, ref, Encode(kFmt, Float4{INFINITY, 0, 0, 0})).ok);
+  EXPECT_FALSE(CompareBlend(kFmt, ref, Encode(kFmt, Float4{NAN, 0, 0, 0})).ok);
+}
+
+TEST(TermBound, Float32ZeroFactorOperandDoesNotCount) {
+  // ZERO/ONE/ADD: the source is multiplied by 0 and contributes no term; m is the
+  // destination. A result ½ ULP of a large source away (lavapipe's rearranged
+  // evaluation) is outside.
+  constexpr DXGI_FORMAT kFmt = DXGI_FORMAT_R32_FLOAT;
+  const BlendOutput ref = BlendResult(kFmt, Blend(BLEND_ZERO, BLEND_ONE, BLEND_OP_ADD), kOnes,
+                                      Float4{-34.5f, 0, 0, 0}, {}, Encode(kFmt, Float4{-0.228f, 0, 0, 0}));
+  EXPECT_EQ(TermMagnitude(ref.terms, 0), std::fabs(-0.228f));
+  const float off = -0.228f + std::ldexp(1.0f, -19);  // ½ ULP of 34.5
+  EXPECT_FALSE(CompareBlend(kFmt, ref, Encode(kFmt, Float4{off, 0, 0, 0})).ok);
+}
+
+TEST(TermBound, Float32MinIsNotWidened) {
+  constexpr DXGI_FORMAT kFmt = DXGI_FORMAT_R32_FLOAT;
+  const BlendOutput ref = BlendResult(kFmt, Blend(BLEND_ONE, BLEND_ONE, BLEND_OP_MIN), kOnes, Float4{1.0f, 0, 0, 0},
+                                      {}, Encode(kFmt, Float4{2.0f, 0, 0, 0}));
+  EXPECT_TRUE(CompareBlend(kFmt, ref, StoredColor{{0x3F800002u, 0, 0, 0}}).ok);
+  EXPECT_FALSE(CompareBlend(kFmt, ref, StoredColor{{0x3F800003u, 0, 0, 0}}).ok);
+}
+
+TEST(TermBound, Float16Cancellation) {
+  // ONE/ONE/SUBTRACT of (1 + 2^-10) and 1 in float16: result 2^-10, m ~ 1,
+  // ULP16(m) = 2^-10, bound 2.25 * 2^-10: 3 * 2^-10 inside, 4 * 2^-10 outside.
+  constexpr DXGI_FORMAT kFmt = DXGI_FORMAT_R16_FLOAT;
+  const float ulp = std::ldexp(1.0f, -10);
+  const BlendOutput ref = BlendResult(kFmt, Blend(BLEND_ONE, BLEND_ONE, BLEND_OP_SUBTRACT), kOnes,
+                                      Float4{1.0f + ulp, 0, 0, 0}, {}, Encode(kFmt, Float4{1.0f, 0, 0, 0}));
+  ASSERT_EQ(ref.decoded[0], ulp);
+  const BlendVerdict in = CompareBlend(kFmt, ref, Encode(kFmt, Float4{3 * ulp, 0, 0, 0}));
+  EXPECT_TRUE(in.ok);
+  EXPECT_TRUE(in.usedTermBound);
+  EXPECT_FALSE(CompareBlend(kFmt, ref, Encode(kFmt, Float4{4 * ulp, 0, 0, 0})).ok);
+}
+
+TEST(TermBound, UintStaysExact) {
+  constexpr DXGI_FORMAT kFmt = DXGI_FORMAT_R32_UINT;
+  const BlendOutput ref = BlendResult(kFmt, Blend(BLEND_ONE, BLEND_ONE, BLEND_OP_SUBTRACT), kOnes,
+                                      UintRegister(42, 0, 0, 0), {}, StoredColor{{40, 0, 0, 0}});
+  EXPECT_TRUE(CompareBlend(kFmt, ref, StoredColor{{42, 0, 0, 0}}).ok);
+  EXPECT_FALSE(CompareBlend(kFmt, ref, StoredColor{{43, 0, 0, 0}}).ok);
 }
 
 }  // namespace

@@ -64,33 +64,43 @@ float Factor(BLEND blend, int channel, const BlenderInputs& in) {
 
 // One channel of Src*SrcFactor OP Dest*DestFactor. MIN and MAX ignore the
 // factors and behave like the min/max shader instructions (FS 17.1).
-float Combine(BLEND_OP op, float src, float srcFactor, float dest, float destFactor) {
+// The products are recorded in `terms` (channel `c`) for the tolerance model.
+float Combine(BLEND_OP op, float src, float srcFactor, float dest, float destFactor, BlendTerms& terms,
+              int c) {
   const float srcTerm = src * srcFactor;
   const float destTerm = dest * destFactor;
+  const bool arithmetic = op == BLEND_OP_ADD || op == BLEND_OP_SUBTRACT || op == BLEND_OP_REV_SUBTRACT;
+  terms.srcTerm[c] = arithmetic ? srcTerm : 0.0f;
+  terms.destTerm[c] = arithmetic ? destTerm : 0.0f;
+  terms.arithmetic[c] = arithmetic;
+  terms.srcOperand[c] = src;
+  terms.destOperand[c] = dest;
+  float result = 0.0f;
   switch (op) {
-    case BLEND_OP_ADD: return srcTerm + destTerm;
-    case BLEND_OP_SUBTRACT: return srcTerm - destTerm;
-    case BLEND_OP_REV_SUBTRACT: return destTerm - srcTerm;
-    case BLEND_OP_MIN: return std::fmin(src, dest);
-    case BLEND_OP_MAX: return std::fmax(src, dest);
+    case BLEND_OP_ADD: result = srcTerm + destTerm; break;
+    case BLEND_OP_SUBTRACT: result = srcTerm - destTerm; break;
+    case BLEND_OP_REV_SUBTRACT: result = destTerm - srcTerm; break;
+    case BLEND_OP_MIN: result = std::fmin(src, dest); break;
+    case BLEND_OP_MAX: result = std::fmax(src, dest); break;
   }
-  return 0.0f;
+  terms.result[c] = result;
+  return result;
 }
 
 // The blended colour before conversion to the target format; Encode then clamps
 // it to the target's range (FS 17.5: "there is a clamp to the RenderTarget range
 // after blend") and quantises it.
 Float4 Blend(DXGI_FORMAT format, const RENDER_TARGET_BLEND_DESC& blend, const Float4& blendFactor,
-             const Float4& src0, const Float4& src1, const StoredColor& dest) {
+             const Float4& src0, const Float4& src1, const StoredColor& dest, BlendTerms& terms) {
   const BlenderInputs in{EnterBlender(format, src0), EnterBlender(format, src1),
                          Decode(format, dest), EnterBlender(format, blendFactor)};
   Float4 result{};
   for (int c = 0; c < kAlpha; ++c) {
     result[c] = Combine(blend.BlendOp, in.src0[c], Factor(blend.SrcBlend, c, in), in.dest[c],
-                        Factor(blend.DestBlend, c, in));
+                        Factor(blend.DestBlend, c, in), terms, c);
   }
   result[kAlpha] = Combine(blend.BlendOpAlpha, in.src0[kAlpha], Factor(blend.SrcBlendAlpha, kAlpha, in),
-                           in.dest[kAlpha], Factor(blend.DestBlendAlpha, kAlpha, in));
+                           in.dest[kAlpha], Factor(blend.DestBlendAlpha, kAlpha, in), terms, kAlpha);
   for (float& channel : result) channel = FlushDenorm(channel);
   return result;
 }
@@ -111,9 +121,15 @@ BlendOutput BlendResult(DXGI_FORMAT format, const RENDER_TARGET_BLEND_DESC& blen
                         const StoredColor& dest) {
   // Integer targets are never blended; BlendEnable FALSE writes the converted source.
   const bool blends = blend.BlendEnable != FALSE && !IsUintFormat(format);
-  const Float4 color = blends ? Blend(format, blend, blendFactor, src0, src1, dest) : src0;
+  BlendTerms terms;
+  const Float4 color = blends ? Blend(format, blend, blendFactor, src0, src1, dest, terms) : src0;
   const StoredColor stored = ApplyWriteMask(blend.RenderTargetWriteMask, Encode(format, color), dest);
-  return {stored, Decode(format, stored)};
+  for (int c = 0; c < 4; ++c) {
+    // Channels the format lacks and masked channels were not written by the blender.
+    const bool written = (blend.RenderTargetWriteMask & (1u << c)) != 0 && KindOf(format, c) != ChannelKind::Absent;
+    if (!written) terms.arithmetic[c] = false;
+  }
+  return {stored, Decode(format, stored), terms};
 }
 
 const RENDER_TARGET_BLEND_DESC& TargetBlendDesc(const BLEND_DESC& desc, UINT renderTarget) {

@@ -8,9 +8,25 @@
 
 namespace rhi::reference {
 
+// The blender's arithmetic for one pixel, per channel (RGBA), before the result
+// is clamped and converted: what the tolerance model needs to size the error a
+// conforming device may make (tolerance.h, BlendTermBound).
+struct BlendTerms {
+  Float4 srcTerm{};     // Csrc*Fsrc (linear; 0 where the op has no product)
+  Float4 destTerm{};    // Cdst*Fdst (linear; for sRGB the destination decoded first)
+  Float4 result{};      // srcTerm OP destTerm, unclamped (MIN/MAX: the min/max)
+  Float4 srcOperand{};  // Csrc and Cdst as they entered the blender (after the clamp / decode);
+  Float4 destOperand{}; // informational: the term bound uses the products, not these
+  // True where ADD / SUBTRACT / REV_SUBTRACT of two products was written to the
+  // channel (blending on, non-UINT target, write mask set). MIN / MAX, unblended
+  // writes and masked channels involve no blend arithmetic.
+  std::array<bool, 4> arithmetic{};
+};
+
 struct BlendOutput {
   StoredColor stored;  // the target's new contents (what a readback must match)
   Float4 decoded;      // Decode(format, stored): linear for sRGB
+  BlendTerms terms{};  // the blend's products and result per channel
 };
 
 // One render target. `src0` is SV_Target (o0 / oN), `src1` is SV_Target1 (only

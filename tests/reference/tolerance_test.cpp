@@ -217,35 +217,39 @@ TEST(TermBound, SrgbSmallOperandsStayTight) {
 }
 
 TEST(TermBound, Float32Cancellation) {
-  // ONE/ONE/SUBTRACT of (1 + 2^-23) and 1: exact result 2^-23. m = 1 + 2^-23,
-  // ULP(m) = 2^-23, bound 2.5 * 2^-23. A result 2 ULP(m) away (3 * 2^-23) is
-  // millions of ULPs of the result but inside; 3 ULP(m) away is outside.
+  // ONE/ONE/SUBTRACT of (1 + 2^-23) and 1: exact result 2^-23. For float32 the
+  // magnitude also covers rearranged evaluation orders (Vulkan leaves the order
+  // open): M = |Cs*Fs| + |Cd*Fd| + |Cd| = 3 + 2^-23, ULP(M) = 2^-22, bound
+  // 2.5 * 2^-22 = 5 * 2^-23. 4 * 2^-23 (3 ULP of 2^-23 away) is inside, 7 * 2^-23
+  // (6 away) and -5 * 2^-23 (6 away) are outside.
   constexpr DXGI_FORMAT kFmt = DXGI_FORMAT_R32_FLOAT;
   const float ulp = std::ldexp(1.0f, -23);
   const BlendOutput ref = BlendResult(kFmt, Blend(BLEND_ONE, BLEND_ONE, BLEND_OP_SUBTRACT), kOnes,
                                       Float4{1.0f + ulp, 0, 0, 0}, {}, Encode(kFmt, Float4{1.0f, 0, 0, 0}));
   ASSERT_EQ(ref.decoded[0], ulp);
-  const BlendVerdict in = CompareBlend(kFmt, ref, Encode(kFmt, Float4{3 * ulp, 0, 0, 0}));
+  const BlendVerdict in = CompareBlend(kFmt, ref, Encode(kFmt, Float4{4 * ulp, 0, 0, 0}));
   EXPECT_TRUE(in.ok);
   EXPECT_TRUE(in.usedTermBound);
   EXPECT_GT(in.channels[0].steps, 1000000u);
-  EXPECT_FALSE(CompareBlend(kFmt, ref, Encode(kFmt, Float4{4 * ulp, 0, 0, 0})).ok);
-  EXPECT_FALSE(CompareBlend(kFmt, ref, Encode(kFmt, Float4{-2 * ulp, 0, 0, 0})).ok);
+  EXPECT_FALSE(CompareBlend(kFmt, ref, Encode(kFmt, Float4{7 * ulp, 0, 0, 0})).ok);
+  EXPECT_FALSE(CompareBlend(kFmt, ref, Encode(kFmt, Float4{-5 * ulp, 0, 0, 0})).ok);
   // NaN / INF are never inside.
   EXPECT_FALSE(CompareBlend(kFmt, ref, Encode(kFmt, Float4{INFINITY, 0, 0, 0})).ok);
   EXPECT_FALSE(CompareBlend(kFmt, ref, Encode(kFmt, Float4{NAN, 0, 0, 0})).ok);
 }
 
-TEST(TermBound, Float32ZeroFactorOperandDoesNotCount) {
-  // ZERO/ONE/ADD: the source is multiplied by 0 and contributes no term; m is the
-  // destination. A result ½ ULP of a large source away (lavapipe's rearranged
-  // evaluation) is outside.
+TEST(TermBound, Float32RearrangedEvaluationIsBoundedByTheOperands) {
+  // ZERO/ONE/ADD: the source is multiplied by 0, so D3D11's exact form gives the
+  // destination. llvmpipe evaluates Cd + Fs*(Cs - Cd), which lets the large
+  // source's rounding in: the bound for float32 uses M = |Cs| + |Cd| = 34.728,
+  // ULP(M) = 2^-18, bound 2.5 * 2^-18. Half an ULP of the source (2^-19) is
+  // inside; 3 * 2^-18 is outside. TermMagnitude (the D3D11 products) stays |Cd|.
   constexpr DXGI_FORMAT kFmt = DXGI_FORMAT_R32_FLOAT;
   const BlendOutput ref = BlendResult(kFmt, Blend(BLEND_ZERO, BLEND_ONE, BLEND_OP_ADD), kOnes,
                                       Float4{-34.5f, 0, 0, 0}, {}, Encode(kFmt, Float4{-0.228f, 0, 0, 0}));
   EXPECT_EQ(TermMagnitude(ref.terms, 0), std::fabs(-0.228f));
-  const float off = -0.228f + std::ldexp(1.0f, -19);  // ½ ULP of 34.5
-  EXPECT_FALSE(CompareBlend(kFmt, ref, Encode(kFmt, Float4{off, 0, 0, 0})).ok);
+  EXPECT_TRUE(CompareBlend(kFmt, ref, Encode(kFmt, Float4{-0.228f + std::ldexp(1.0f, -19), 0, 0, 0})).ok);
+  EXPECT_FALSE(CompareBlend(kFmt, ref, Encode(kFmt, Float4{-0.228f + 3 * std::ldexp(1.0f, -18), 0, 0, 0})).ok);
 }
 
 TEST(TermBound, Float32MinIsNotWidened) {

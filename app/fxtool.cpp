@@ -4,7 +4,8 @@
 //   fxtool run  FILE.fx --technique T [--pass P] [--points N | --vertices FILE]
 //               [--target FORMAT:WxH[:clear=r,g,b,a]]... [--depth D32_FLOAT[:clear=1]]
 //               [--set name=v1,v2,...]... [--out DIR] [--pixel x,y]... [--dispatch X,Y,Z]
-//               [--so-bytes N] [--so-vertices N] [--topology NAME] [--validation] [-I dir] [-D NAME=VALUE]
+//               [--buffer NAME:ELEMENTS]... [--so-bytes N] [--so-vertices N] [--so-uint SEM,...] [--topology NAME]
+//               [--validation] [-I dir] [-D NAME=VALUE]
 //
 // `info` needs no GPU: it runs the effect front end and compiles every shader
 // with the HLSL compiler. `run` creates an rhi::Device (RHI_DEVICE picks the
@@ -34,6 +35,13 @@
 #include "rhi/rhi.h"
 #include "rhi_reference/formats.h"
 
+// The effect runtime's workaround for glslang 12 (effects/runtime/src/gs_isolation.h,
+// linked from fx_runtime): blanks the bodies of geometry shaders whose stream type
+// differs from the kept entry's, keeping every position.
+namespace fx::detail {
+std::string IsolateGeometryShader(const std::string& hlsl, const std::vector<std::string>& keep);
+}
+
 namespace {
 
 using rhi::ComPtr;
@@ -44,7 +52,9 @@ constexpr const char* kUsage =
     "  fxtool run FILE.fx --technique T [--pass P] [--points N | --vertices FILE]\n"
     "         [--target FORMAT:WxH[:clear=r,g,b,a]]... [--depth D32_FLOAT[:clear=1]]\n"
     "         [--set name=v1,v2,...]... [--out DIR] [--pixel x,y]... [--dispatch X,Y,Z]\n"
-    "         [--so-bytes N] [--so-vertices N] [--topology NAME] [--validation] [-I dir] [-D NAME=VALUE]\n";
+    "         [--buffer NAME:ELEMENTS]... [--so-bytes N] [--so-vertices N] [--so-uint SEM,...] [--topology NAME]\n"
+    "         [--validation]"
+    " [-I dir] [-D NAME=VALUE]\n";
 
 struct Target {
   std::string formatName;
@@ -72,6 +82,8 @@ struct Options {
   unsigned soVertices = 4;
   std::string topology;
   bool validation = false;
+  std::vector<std::pair<std::string, unsigned>> buffers;  // --buffer NAME:ELEMENTS
+  std::set<std::string> soUint;  // SO semantics printed as uint32 instead of float
 };
 
 [[noreturn]] void Usage(const std::string& why) {
@@ -179,6 +191,17 @@ Options ParseArgs(int argc, char** argv) {
     } else if (a == "--so-bytes") o.soBytes = static_cast<unsigned>(ParseNumber(value(), "--so-bytes"));
     else if (a == "--so-vertices") o.soVertices = static_cast<unsigned>(ParseNumber(value(), "--so-vertices"));
     else if (a == "--topology") o.topology = value();
+    else if (a == "--so-uint") {
+      for (const std::string& sem : Split(value(), ',')) o.soUint.insert(sem);
+    }
+    else if (a == "--buffer") {
+      std::string b = value();
+      size_t colon = b.find(':');
+      if (colon == std::string::npos || colon == 0) Usage("--buffer wants NAME:ELEMENTS");
+      double n = ParseNumber(b.substr(colon + 1), "--buffer");
+      if (n < 1 || n > (1 << 24)) Usage("--buffer: ELEMENTS out of range");
+      o.buffers.emplace_back(b.substr(0, colon), static_cast<unsigned>(n));
+    }
     else if (a == "--validation") o.validation = true;
     else if (!a.empty() && a[0] == '-') Usage("unknown option '" + a + "'");
     else if (o.file.empty()) o.file = a;
@@ -280,7 +303,9 @@ int CompileAll(const Options& o, const fx::EffectAst& ast, std::map<int, std::st
     auto it = done.find(key);
     if (it == done.end()) {
       hlsl::CompileRequest req;
-      req.source = ast.hlsl;
+      // As the runtime does: glslang 12 crashes on a source holding geometry
+      // shaders of different stream types, so blank the other ones.
+      req.source = fx::detail::IsolateGeometryShader(ast.hlsl, {sh.entryPoint, sh.function});
       req.fileName = o.file;
       req.entryPoint = sh.entryPoint;
       req.profile = sh.profile;
@@ -461,11 +486,13 @@ bool SetVariable(fx::Effect* effect, const std::string& name, const std::vector<
 struct VertexData {
   std::vector<std::string> semantics;  // storage for SemanticName pointers
   std::vector<rhi::INPUT_ELEMENT_DESC> elements;
-  std::vector<float> data;
+  std::vector<uint32_t> data;  // 32-bit components, bit patterns
+  std::vector<char> kinds;      // per component: f, u, i
   unsigned stride = 0, count = 0;
 };
 
-// First non-comment line: the layout, e.g. "POSITION:3 COLOR0:4"; then one vertex per line.
+// First non-comment line: the layout, e.g. "POSITION:3 COLOR0:4 SEEDAGE:2u" (N components,
+// float32 unless suffixed u = uint32 or i = int32); then one vertex per line.
 bool ReadVertices(const std::string& path, VertexData* v) {
   std::ifstream in(path);
   if (!in) {
@@ -489,6 +516,7 @@ bool ReadVertices(const std::string& path, VertexData* v) {
       for (const std::string& tok : tokens) {
         size_t colon = tok.find(':');
         unsigned n = colon == std::string::npos ? 4 : static_cast<unsigned>(std::atoi(tok.c_str() + colon + 1));
+        char kind = colon == std::string::npos || tok.back() < 'a' ? 'f' : tok.back();
         std::string sem = tok.substr(0, colon);
         if (n < 1 || n > 4 || sem.empty()) {
           std::fprintf(stderr, "%s:%d:1: error: layout entries are SEMANTIC:N with N in 1..4\n", path.c_str(), lineNo);
@@ -497,9 +525,19 @@ bool ReadVertices(const std::string& path, VertexData* v) {
         size_t digits = sem.find_last_not_of("0123456789") + 1;
         unsigned index = digits < sem.size() ? static_cast<unsigned>(std::atoi(sem.c_str() + digits)) : 0;
         v->semantics.push_back(sem.substr(0, digits));
-        static const rhi::DXGI_FORMAT formats[] = {rhi::DXGI_FORMAT_R32_FLOAT, rhi::DXGI_FORMAT_R32G32_FLOAT,
-                                                   rhi::DXGI_FORMAT_R32G32B32_FLOAT, rhi::DXGI_FORMAT_R32G32B32A32_FLOAT};
+        static const rhi::DXGI_FORMAT floats[] = {rhi::DXGI_FORMAT_R32_FLOAT, rhi::DXGI_FORMAT_R32G32_FLOAT,
+                                                  rhi::DXGI_FORMAT_R32G32B32_FLOAT, rhi::DXGI_FORMAT_R32G32B32A32_FLOAT};
+        static const rhi::DXGI_FORMAT uints[] = {rhi::DXGI_FORMAT_R32_UINT, rhi::DXGI_FORMAT_R32G32_UINT,
+                                                 rhi::DXGI_FORMAT_R32G32B32_UINT, rhi::DXGI_FORMAT_R32G32B32A32_UINT};
+        static const rhi::DXGI_FORMAT ints[] = {rhi::DXGI_FORMAT_R32_SINT, rhi::DXGI_FORMAT_R32G32_SINT,
+                                                rhi::DXGI_FORMAT_R32G32B32_SINT, rhi::DXGI_FORMAT_R32G32B32A32_SINT};
+        if (kind != 'f' && kind != 'u' && kind != 'i') {
+          std::fprintf(stderr, "%s:%d:1: error: component type suffix is u or i\n", path.c_str(), lineNo);
+          return false;
+        }
+        const rhi::DXGI_FORMAT* formats = kind == 'u' ? uints : kind == 'i' ? ints : floats;
         v->elements.push_back({nullptr, index, formats[n - 1], 0, floatsPerVertex * 4, rhi::INPUT_PER_VERTEX_DATA, 0});
+        for (unsigned k = 0; k < n; ++k) v->kinds.push_back(kind);
         widths.push_back(n);
         floatsPerVertex += n;
       }
@@ -510,7 +548,16 @@ bool ReadVertices(const std::string& path, VertexData* v) {
                    floatsPerVertex, tokens.size());
       return false;
     }
-    for (const std::string& tok : tokens) v->data.push_back(std::strtof(tok.c_str(), nullptr));
+    for (size_t k = 0; k < tokens.size(); ++k) {
+      uint32_t bits;
+      if (v->kinds[k] == 'u') bits = static_cast<uint32_t>(std::strtoul(tokens[k].c_str(), nullptr, 0));
+      else if (v->kinds[k] == 'i') bits = static_cast<uint32_t>(static_cast<int32_t>(std::strtol(tokens[k].c_str(), nullptr, 0)));
+      else {
+        float f = std::strtof(tokens[k].c_str(), nullptr);
+        std::memcpy(&bits, &f, 4);
+      }
+      v->data.push_back(bits);
+    }
     ++v->count;
   }
   for (size_t i = 0; i < v->elements.size(); ++i) v->elements[i].SemanticName = v->semantics[i].c_str();
@@ -706,6 +753,60 @@ int Run(const Options& o) {
           return 1;
       }
     }
+    // --buffer NAME:ELEMENTS: a RWStructuredBuffer<T> (T a 32-bit scalar or vector) bound to the variable.
+    struct UavBuffer {
+      std::string name;
+      char kind = 'f';
+      unsigned components = 1, elements = 0;
+      ComPtr<rhi::Buffer> buffer;
+      ComPtr<rhi::UnorderedAccessView> uav;
+    };
+    std::vector<UavBuffer> uavBuffers;
+    for (const auto& [name, n] : o.buffers) {
+      const fx::ResourceVariable* r = fx::FindByName(ast.resources, name);
+      if (!r || r->kind != fx::ResourceKind::RWStructuredBuffer) {
+        std::fprintf(stderr, "fxtool: error: --buffer %s: no RWStructuredBuffer of that name\n", name.c_str());
+        return 1;
+      }
+      UavBuffer b;
+      b.name = name;
+      b.elements = n;
+      std::string t = r->templateArgs;
+      t.erase(std::remove(t.begin(), t.end(), ' '), t.end());
+      std::string base = t;
+      if (!t.empty() && t.back() >= '1' && t.back() <= '4') {
+        b.components = static_cast<unsigned>(t.back() - '0');
+        base = t.substr(0, t.size() - 1);
+      }
+      if (base == "float") b.kind = 'f';
+      else if (base == "uint" || base == "dword") b.kind = 'u';
+      else if (base == "int") b.kind = 'i';
+      else {
+        std::fprintf(stderr, "fxtool: error: --buffer %s: element type '%s' is not a 32-bit scalar or vector\n",
+                     name.c_str(), r->templateArgs.c_str());
+        return 1;
+      }
+      rhi::BUFFER_DESC bd{};
+      bd.ByteWidth = n * b.components * 4;
+      bd.Usage = rhi::USAGE_DEFAULT;
+      bd.BindFlags = rhi::BIND_UNORDERED_ACCESS;
+      bd.MiscFlags = rhi::RESOURCE_MISC_BUFFER_STRUCTURED;
+      bd.StructureByteStride = b.components * 4;
+      std::vector<uint32_t> zeros(size_t{n} * b.components, 0);
+      rhi::SUBRESOURCE_DATA init{zeros.data(), 0, 0};
+      if (!Check(device->CreateBuffer(&bd, &init, b.buffer.GetAddressOf()), "CreateBuffer(--buffer)")) return 3;
+      rhi::UNORDERED_ACCESS_VIEW_DESC ud{};
+      ud.Format = rhi::DXGI_FORMAT_UNKNOWN;
+      ud.ViewDimension = rhi::UAV_DIMENSION_BUFFER;
+      ud.Buffer = {0, n, 0};
+      if (!Check(device->CreateUnorderedAccessView(b.buffer.Get(), &ud, b.uav.GetAddressOf()), "CreateUnorderedAccessView(--buffer)"))
+        return 3;
+      if (!Check(effect->GetVariableByName(name.c_str())->AsUnorderedAccessView()->SetUnorderedAccessView(b.uav.Get()),
+                 "SetUnorderedAccessView(--buffer)"))
+        return 1;
+      uavBuffers.push_back(std::move(b));
+    }
+
     ComPtr<rhi::Texture2D> depthTex;
     ComPtr<rhi::DepthStencilView> dsv;
     if (o.depth) {
@@ -847,10 +948,13 @@ int Run(const Options& o) {
             if (e.SemanticName) {
               std::string key = std::string(e.SemanticName) + (e.SemanticIndex ? std::to_string(e.SemanticIndex) : "");
               vj += (firstField ? "" : ", ") + JsonString(key) + ": [";
+              const bool asUint = o.soUint.count(key) || o.soUint.count(e.SemanticName);
               for (unsigned c = 0; c < e.ComponentCount; ++c) {
                 float f;
+                uint32_t bits;
                 std::memcpy(&f, base + offset + c * 4, 4);
-                vj += (c ? ", " : "") + JsonNumber(f);
+                std::memcpy(&bits, base + offset + c * 4, 4);
+                vj += (c ? ", " : "") + (asUint ? std::to_string(bits) : JsonNumber(f));
               }
               vj += "]";
               firstField = false;
@@ -917,6 +1021,39 @@ int Run(const Options& o) {
     }
     if (!storedJson.empty()) {
       json += ", \"stored\": {" + storedJson + "}";
+    }
+    std::string buffersJson;
+    for (UavBuffer& b : uavBuffers) {
+      rhi::BUFFER_DESC sd{};
+      sd.ByteWidth = b.elements * b.components * 4;
+      sd.Usage = rhi::USAGE_STAGING;
+      sd.CPUAccessFlags = rhi::CPU_ACCESS_READ;
+      ComPtr<rhi::Buffer> staging;
+      if (!Check(device->CreateBuffer(&sd, nullptr, staging.GetAddressOf()), "CreateBuffer(staging)")) return 3;
+      ctx->CopyResource(staging.Get(), b.buffer.Get());
+      rhi::MAPPED_SUBRESOURCE m{};
+      if (!Check(ctx->Map(staging.Get(), 0, rhi::MAP_READ, 0, &m), "Map(--buffer)")) return 3;
+      std::string j;
+      for (unsigned e = 0; e < b.elements; ++e) {
+        j += e ? ", " : "";
+        if (b.components > 1) j += "[";
+        for (unsigned c = 0; c < b.components; ++c) {
+          uint32_t bits;
+          std::memcpy(&bits, static_cast<const uint8_t*>(m.pData) + (size_t{e} * b.components + c) * 4, 4);
+          float f;
+          std::memcpy(&f, &bits, 4);
+          j += (c ? ", " : "") + (b.kind == 'u'   ? std::to_string(bits)
+                                  : b.kind == 'i' ? std::to_string(static_cast<int32_t>(bits))
+                                                  : JsonNumber(f));
+        }
+        if (b.components > 1) j += "]";
+      }
+      ctx->Unmap(staging.Get(), 0);
+      buffersJson += (buffersJson.empty() ? "" : ", ") + JsonString(b.name) + ": [" + j + "]";
+    }
+    if (!buffersJson.empty()) {
+      json += (firstKey ? "" : ", ") + std::string("\"buffers\": {") + buffersJson + "}";
+      firstKey = false;
     }
     if (!soJson.empty()) {
       json += (firstKey ? "" : ", ") + std::string("\"stream_out\": [") + soJson + "]";

@@ -182,7 +182,8 @@ TEST(TermBound, SrgbCancellationJudgedInLinearSpace) {
   // The lavapipe case: INV_SRC_ALPHA/BLEND_FACTOR/SUBTRACT on green, src 0.6797
   // (alpha clamps to 0, so Fs = 1), dest code 0xd7, blend factor clamps to 1:
   // 0.6797 - 0.6795 -> sRGB code 1. The device wrote 4: 3 codes near black but
-  // 0.0012 in linear, against 2.6 sRGB steps at m = 0.68 (~0.0186): inside.
+  // 0.0012 in linear, against 2.6 sRGB steps at the operands' magnitude
+  // m = |Cs*Fs| + |Cd*Fd| + |Cd| = 0.6797 + 0.6795 + 0.6795: inside.
   constexpr DXGI_FORMAT kFmt = DXGI_FORMAT_R8G8B8A8_UNORM_SRGB;
   const RENDER_TARGET_BLEND_DESC b = Blend(BLEND_INV_SRC_ALPHA, BLEND_BLEND_FACTOR, BLEND_OP_SUBTRACT);
   const Float4 factor{1.09645271f, 1.45093727f, 1.23960161f, 0.684657693f};
@@ -192,7 +193,7 @@ TEST(TermBound, SrgbCancellationJudgedInLinearSpace) {
   const BlendVerdict four = CompareBlend(kFmt, ref, WithChannel(ref.stored, 1, 4));
   EXPECT_TRUE(four.ok);
   EXPECT_TRUE(four.usedTermBound);
-  EXPECT_NEAR(four.channels[1].m, 0.6797, 1e-3);
+  EXPECT_NEAR(four.channels[1].m, 0.6797 + 2 * 0.6795, 2e-3);
   // Just outside: the first code whose linear distance exceeds 2.6 steps at m.
   const double bound = four.channels[1].bound;
   uint32_t firstOut = 2;
@@ -261,17 +262,18 @@ TEST(TermBound, Float32MinIsNotWidened) {
 }
 
 TEST(TermBound, Float16Cancellation) {
-  // ONE/ONE/SUBTRACT of (1 + 2^-10) and 1 in float16: result 2^-10, m ~ 1,
-  // ULP16(m) = 2^-10, bound 2.25 * 2^-10: 3 * 2^-10 inside, 4 * 2^-10 outside.
+  // ONE/ONE/SUBTRACT of (1 + 2^-10) and 1 in float16: result 2^-10. The
+  // operands' magnitude m = |Cs| + |Cd| + |Cd| ~ 3, ULP16(m) = 2^-9, bound
+  // 2.25 * 2^-9: 4 * 2^-10 (3 ULP16 of the result away) inside, 6 * 2^-10 outside.
   constexpr DXGI_FORMAT kFmt = DXGI_FORMAT_R16_FLOAT;
   const float ulp = std::ldexp(1.0f, -10);
   const BlendOutput ref = BlendResult(kFmt, Blend(BLEND_ONE, BLEND_ONE, BLEND_OP_SUBTRACT), kOnes,
                                       Float4{1.0f + ulp, 0, 0, 0}, {}, Encode(kFmt, Float4{1.0f, 0, 0, 0}));
   ASSERT_EQ(ref.decoded[0], ulp);
-  const BlendVerdict in = CompareBlend(kFmt, ref, Encode(kFmt, Float4{3 * ulp, 0, 0, 0}));
+  const BlendVerdict in = CompareBlend(kFmt, ref, Encode(kFmt, Float4{4 * ulp, 0, 0, 0}));
   EXPECT_TRUE(in.ok);
   EXPECT_TRUE(in.usedTermBound);
-  EXPECT_FALSE(CompareBlend(kFmt, ref, Encode(kFmt, Float4{4 * ulp, 0, 0, 0})).ok);
+  EXPECT_FALSE(CompareBlend(kFmt, ref, Encode(kFmt, Float4{6 * ulp, 0, 0, 0})).ok);
 }
 
 TEST(TermBound, UintStaysExact) {

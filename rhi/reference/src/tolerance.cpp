@@ -175,15 +175,20 @@ double TermMagnitude(const BlendTerms& terms, int channel) {
                    std::fabs(static_cast<double>(terms.result[channel]))});
 }
 
-// float32 targets over Vulkan: D3D11 (FS 17.5) defines the blend as
-// Cs*Fs OP Cd*Fd, but Vulkan only requires blending "with a precision and
-// dynamic range no lower than that used to represent destination components"
-// and leaves the evaluation order open; llvmpipe evaluates OVER-like blends as
-// Cd + Fs*(Cs - Cd). The rounding error of any such two-term rearrangement is
-// bounded by the largest magnitude its intermediates can take:
-// max(m, |Cs| + |Cd|, |Cs*Fs| + |Cd*Fd| + |Cd|). On lavapipe 38 of 601,120
-// cases need this (docs/conformance.md counts them with the term bound).
-double ReassociationMagnitude(const BlendTerms& terms, int channel) {
+// Float and sRGB targets: the products are not the only magnitudes that count.
+//  - Vulkan only requires blending "with a precision and dynamic range no lower
+//    than that used to represent destination components" and leaves the
+//    evaluation order open: llvmpipe evaluates OVER-like blends as
+//    Cd + Fs*(Cs - Cd).
+//  - FS 17.5 lets the blender work at the render target's precision, so the
+//    source colour and the factors derived from it may be rounded to the
+//    target format before the products (NVIDIA does so on float16 and sRGB
+//    targets: 1 - As with As rounded to float16 first).
+// Either way the error is one RT unit at the operands' magnitude, not at the
+// products': the bound uses max(m, |Cs| + |Cd|, |Cs*Fs| + |Cd*Fd| + |Cd|), the
+// largest value any such evaluation handles. UNORM units are absolute and
+// need no such widening. docs/conformance.md counts the cases that need it.
+double OperandMagnitude(const BlendTerms& terms, int channel) {
   const double s = std::fabs(static_cast<double>(terms.srcOperand[channel]));
   const double d = std::fabs(static_cast<double>(terms.destOperand[channel]));
   const double sTerm = std::fabs(static_cast<double>(terms.srcTerm[channel]));
@@ -220,8 +225,7 @@ BlendVerdict CompareBlend(DXGI_FORMAT format, const BlendOutput& expected, const
     const TermBound tb = BlendTermK(format, c);
     v.termBoundApplies = expected.terms.arithmetic[c] && tb.k > 0 && v.steps != kIncomparable;
     if (v.termBoundApplies) {
-      v.m = kind == ChannelKind::Float32 ? ReassociationMagnitude(expected.terms, c)
-                                         : TermMagnitude(expected.terms, c);
+      v.m = kind == ChannelKind::Unorm ? TermMagnitude(expected.terms, c) : OperandMagnitude(expected.terms, c);
       v.unit = BlendUnit(format, c, v.m);
       v.bound = tb.k * v.unit;
       // UNORM values are whole steps apart: compare the exact step count, not

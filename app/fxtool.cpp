@@ -30,17 +30,11 @@
 
 #include "fx/effect.h"
 #include "fx/effect_parser.h"
+#include "fx/gs_isolation.h"
 #include "fxtool_names.h"
 #include "hlsl/hlsl_compiler.h"
 #include "rhi/rhi.h"
 #include "rhi_reference/formats.h"
-
-// The effect runtime's workaround for glslang 12 (effects/runtime/src/gs_isolation.h,
-// linked from fx_runtime): blanks the bodies of geometry shaders whose stream type
-// differs from the kept entry's, keeping every position.
-namespace fx::detail {
-std::string IsolateGeometryShader(const std::string& hlsl, const std::vector<std::string>& keep);
-}
 
 namespace {
 
@@ -305,7 +299,7 @@ int CompileAll(const Options& o, const fx::EffectAst& ast, std::map<int, std::st
       hlsl::CompileRequest req;
       // As the runtime does: glslang 12 crashes on a source holding geometry
       // shaders of different stream types, so blank the other ones.
-      req.source = fx::detail::IsolateGeometryShader(ast.hlsl, {sh.entryPoint, sh.function});
+      req.source = fx::IsolateGeometryShader(ast.hlsl, {sh.entryPoint, sh.function});
       req.fileName = o.file;
       req.entryPoint = sh.entryPoint;
       req.profile = sh.profile;

@@ -2,7 +2,7 @@
 #include <filesystem>
 
 #include "effect_test_util.h"
-#include "gs_isolation.h"
+#include "fx/gs_isolation.h"
 
 namespace effects_test {
 namespace {
@@ -183,16 +183,16 @@ TEST(GsIsolation, BlanksOtherStreamTypesKeepingLines) {
       "struct A { float4 p : POSITION; };\n"
       "[maxvertexcount(1)] void GSA(point A i[1], inout PointStream<A> s) {\n  s.Append(i[0]);\n}\n"
       "[maxvertexcount(3)] void GSB(point A i[1], inout TriangleStream<A> s) {\n  s.Append(i[0]);\n}\n";
-  std::string a = fx::detail::IsolateGeometryShader(source, {"GSA"});
+  std::string a = fx::IsolateGeometryShader(source, {"GSA"});
   EXPECT_EQ(a.size(), source.size());
   EXPECT_EQ(std::count(a.begin(), a.end(), '\n'), std::count(source.begin(), source.end(), '\n'));
   EXPECT_NE(a.find("PointStream<A> s) {\n  s.Append"), std::string::npos);
   EXPECT_EQ(a.find("TriangleStream<A> s) {\n  s.Append"), std::string::npos);
-  std::string none = fx::detail::IsolateGeometryShader(source, {"VS"});
+  std::string none = fx::IsolateGeometryShader(source, {"VS"});
   EXPECT_EQ(none.find("Append"), std::string::npos);
   // One stream type: unchanged.
   std::string one = source.substr(0, source.find("[maxvertexcount(3)]"));
-  EXPECT_EQ(fx::detail::IsolateGeometryShader(one, {"VS"}), one);
+  EXPECT_EQ(fx::IsolateGeometryShader(one, {"VS"}), one);
 }
 
 }  // namespace

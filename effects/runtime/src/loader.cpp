@@ -4,7 +4,7 @@
 #include <map>
 
 #include "effect_impl.h"
-#include "gs_isolation.h"
+#include "fx/gs_isolation.h"
 #include "variables.h"
 
 namespace fx::detail {

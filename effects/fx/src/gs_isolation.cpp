@@ -1,11 +1,11 @@
-#include "gs_isolation.h"
+#include "fx/gs_isolation.h"
 
 #include <algorithm>
 #include <cctype>
 #include <regex>
 #include <set>
 
-namespace fx::detail {
+namespace fx {
 namespace {
 
 struct Function {
@@ -93,4 +93,4 @@ std::string IsolateGeometryShader(const std::string& hlsl, const std::vector<std
   return out;
 }
 
-}  // namespace fx::detail
+}  // namespace fx

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace fx::detail {
+namespace fx {
 
 // Returns `hlsl` with the bodies of the functions that take an `inout
 // XxxStream<T>` parameter blanked (replaced by spaces, newlines kept, so every
@@ -15,4 +15,4 @@ namespace fx::detail {
 // same types as those. Returns `hlsl` unchanged when it streams at most one type.
 std::string IsolateGeometryShader(const std::string& hlsl, const std::vector<std::string>& keep);
 
-}  // namespace fx::detail
+}  // namespace fx

@@ -105,7 +105,7 @@ GpuTest::Target GpuTest::MakeRenderTarget(UINT width, UINT height, rhi::DXGI_FOR
   desc.Format = format;
   desc.SampleDesc.Count = samples;
   desc.Usage = rhi::USAGE_DEFAULT;
-  desc.BindFlags = rhi::BIND_RENDER_TARGET | (samples == 1 ? rhi::BIND_SHADER_RESOURCE : 0);
+  desc.BindFlags = rhi::BIND_RENDER_TARGET | (samples == 1 ? UINT{rhi::BIND_SHADER_RESOURCE} : 0u);
   Target target;
   EXPECT_EQ(device->CreateTexture2D(&desc, nullptr, target.texture.GetAddressOf()), rhi::S_OK);
   EXPECT_EQ(device->CreateRenderTargetView(target.texture.Get(), nullptr, target.rtv.GetAddressOf()), rhi::S_OK);

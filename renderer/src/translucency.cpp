@@ -502,7 +502,7 @@ void Translucency::Timestamp(int index) {
 
 void Translucency::RenderFrame(TranslucencyMethod method) {
   Impl& m = *impl_;
-  camera_ = CameraForFrame(frame_);
+  camera_ = cameraOverride_ ? *cameraOverride_ : CameraForFrame(frame_);
   m.countThisFrame = settings_.countParticles || method == TranslucencyMethod::Sorted;
   if (settings_.timestamps) {
     m.context->Begin(m.disjoint.Get());

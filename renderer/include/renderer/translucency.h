@@ -17,6 +17,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -87,6 +88,9 @@ class Translucency {
 
   // The fixed camera of frame n.
   Camera CameraForFrame(uint32_t n) const;
+  // A camera used instead of the scripted one from the next RenderFrame on (e.g. an
+  // interactive orbit camera); std::nullopt returns to the scripted camera.
+  void SetCameraOverride(std::optional<Camera> camera) { cameraOverride_ = camera; }
 
  private:
   struct Impl;
@@ -101,6 +105,7 @@ class Translucency {
   uint32_t frame_ = 0;
   uint64_t particleCount_ = 0;
   Camera camera_;
+  std::optional<Camera> cameraOverride_;
   std::unique_ptr<ParticleSystem> particles_;
   std::unique_ptr<Impl> impl_;
 };

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "renderer/translucency.h"
+#include "replay_window.h"
 #include "rhi/rhi.h"
 
 using renderer::TranslucencyDemo;
@@ -182,6 +183,7 @@ int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (ReplayWindowRequested(argc, argv)) return RunReplayWindow(argc, argv);  // replay --window: app/replay_window.cpp
   Options o;
   bool haveMethod = false;
   for (int i = 1; i < argc; ++i) {

@@ -79,12 +79,19 @@ struct Options {
   std::string screenshot;
   int frames = 0;  // with --screenshot: frames before the capture; else 0 = until closed
   bool literalTable4 = false, validation = false;
+  bool testResize = false;  // resize the window to 800x450 after 3 frames, to 500x400 after 6
 };
+
+constexpr UINT kTestResizeWidth = 500, kTestResizeHeight = 400;
 
 void Usage() {
   std::fprintf(stderr,
                "usage: replay --window [--demo smoke|shards] [--method alpha|wboit|colored|sorted] [--size WxH]\n"
-               "                       [--literal-table4] [--validation] [--screenshot PATH --frames N]\n"
+               "                       [--literal-table4] [--validation] [--screenshot PATH --frames N] [--test-resize]\n"
+               "  --screenshot PATH --frames N  after N frames write the back buffer (overlay included) as PNG\n"
+               "                                and exit; prints the overlay window's rectangle\n"
+               "  --test-resize                 resize the window to 800x450 after 3 frames, 500x400 after 6\n"
+               "                                (the screenshot waits for the final size)\n"
                "  keys: 1-4 method, D demo, Space pause, C scripted camera, Esc quit;\n"
                "        left-drag orbits, the wheel zooms\n");
 }
@@ -115,6 +122,8 @@ bool ParseOptions(int argc, char** argv, Options* o, std::string* error) {
       o->literalTable4 = true;
     } else if (a == "--validation") {
       o->validation = true;
+    } else if (a == "--test-resize") {
+      o->testResize = true;
     } else {
       return *error = "unknown argument " + a, false;
     }
@@ -392,21 +401,19 @@ void ReplayWindow::BuildOverlay() {
   overlayRect_[2] = size.x * io.DisplayFramebufferScale.x, overlayRect_[3] = size.y * io.DisplayFramebufferScale.y;
 
   ImGui::Text("%s", device_->GetAdapterName());
-  ImGui::Text("%s / %s, frame %u%s", renderer::ToString(settings_.demo), renderer::ToString(method_),
-              scene_ ? scene_->frame() : 0u, paused_ ? "  (paused)" : "");
-  ImGui::Text("%.1f FPS, %.2f ms/frame", io.Framerate, io.Framerate > 0 ? 1000.0f / io.Framerate : 0.0f);
+  const uint32_t shown = scene_ && scene_->frame() > 0 ? scene_->frame() - 1 : 0;  // frame() is the next one
+  ImGui::Text("%s / %s, frame %u%s", renderer::ToString(settings_.demo), renderer::ToString(method_), shown,
+              paused_ ? "  (paused)" : "");
+  ImGui::Text("%.1f FPS, %.1f ms/frame", io.Framerate, io.Framerate > 0 ? 1000.0f / io.Framerate : 0.0f);
   if (!frameMs_.empty())
     ImGui::PlotLines("##frame", frameMs_.data(), int(frameMs_.size()), 0, "frame ms", 0.0f,
-                     std::max(1.0f, *std::max_element(frameMs_.begin(), frameMs_.end())), ImVec2(260, 40));
-
-  ImGui::Separator();
-  ImGui::Text("GPU ms (TIMESTAMP queries)");
+                     std::max(1.0f, *std::max_element(frameMs_.begin(), frameMs_.end())), ImVec2(250, 28));
+  // Per-pass GPU times of the last frame (TIMESTAMP queries inside TIMESTAMP_DISJOINT).
   if (times_.valid) {
-    ImGui::Text("opaque %7.3f   update  %7.3f", times_.opaqueMs, times_.updateMs);
-    ImGui::Text("3D     %7.3f   compose %7.3f", times_.transparencyMs, times_.composeMs);
-    ImGui::Text("total  %7.3f", times_.totalMs);
+    ImGui::Text("GPU ms: opaque %.2f  update %.2f", times_.opaqueMs, times_.updateMs);
+    ImGui::Text("        3D %.2f  compose %.2f  total %.2f", times_.transparencyMs, times_.composeMs, times_.totalMs);
   } else {
-    ImGui::TextDisabled("n/a (disjoint or not yet measured)");
+    ImGui::TextDisabled("GPU ms: n/a (disjoint or not measured)");
   }
   if (settings_.demo == TranslucencyDemo::Smoke)
     ImGui::Text("live particles: %llu", static_cast<unsigned long long>(scene_ ? scene_->particleCount() : 0));
@@ -429,7 +436,7 @@ void ReplayWindow::BuildOverlay() {
     recreate_ = true;
   }
 
-  if (ImGui::CollapsingHeader("Parameters (applying restarts the demo)", ImGuiTreeNodeFlags_DefaultOpen)) {
+  if (ImGui::CollapsingHeader("Parameters (applying restarts the demo)")) {
     // Creation settings of Translucency: a changed value recreates it once the edit ends.
     auto apply = [&] { recreate_ |= ImGui::IsItemDeactivatedAfterEdit(); };
     if (settings_.demo == TranslucencyDemo::Smoke) {
@@ -452,7 +459,6 @@ void ReplayWindow::BuildOverlay() {
     recreate_ |= ImGui::Checkbox("literal Table 4 (colored; else corrected)", &settings_.literalTable4);
     recreate_ |= ImGui::Checkbox("neutral background", &settings_.neutralBackground);
   }
-  ImGui::Separator();
   ImGui::Text("camera: %s", orbiting_ ? "orbit (C: scripted)" : "scripted (drag/wheel: orbit)");
   ImGui::TextDisabled("1-4 method  D demo  Space pause  Esc quit");
   ImGui::End();
@@ -588,8 +594,16 @@ int ReplayWindow::Run() {
     ctx_->ClearState();
 
     ++frames;
-    if (!options_.screenshot.empty() && frames >= options_.frames) {
+    if (options_.testResize && frames == 3) glfwSetWindowSize(window_, 800, 450);
+    if (options_.testResize && frames == 6) glfwSetWindowSize(window_, int(kTestResizeWidth), int(kTestResizeHeight));
+    const bool sizeReached = !options_.testResize || (width_ == kTestResizeWidth && height_ == kTestResizeHeight);
+    if (!options_.screenshot.empty() && frames >= options_.frames && sizeReached) {
       if (!SaveScreenshot(options_.screenshot)) rc = 1;
+      quit_ = true;
+    } else if (!options_.screenshot.empty() && frames >= options_.frames + 300) {
+      std::fprintf(stderr, "replay: the window never reached %ux%u (now %ux%u)\n", kTestResizeWidth,
+                   kTestResizeHeight, width_, height_);
+      rc = 1;
       quit_ = true;
     }
     if (rhi::FAILED(swapChain_->Present(1, 0))) {

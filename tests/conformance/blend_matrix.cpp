@@ -234,10 +234,11 @@ std::string CaseFailure::Describe() const {
   for (int c = 0; c < 4; ++c)
     s << (steps[c] == ref::kIncomparable ? std::string("inc") : std::to_string(steps[c])) << (c < 3 ? "," : ")");
   s.precision(3);
-  s << " term bound (|err| / k*unit(m) @ m):";
+  s << " term bound (|err| / bound @ m):";
   for (int c = 0; c < 4; ++c) {
     if (bound[c] > 0) s << " " << "RGBA"[c] << " " << error[c] << "/" << bound[c] << "@" << magnitude[c];
   }
+  if (hadSaturatedReading) s << "; SRC_ALPHA_SAT f outside [0,1], saturated reading " << Bits(saturatedExpected) << " also rejected";
   if (withinOperandBound) s << "; within k*unit(max operand)";
   return s.str();
 }
@@ -342,7 +343,10 @@ MatrixResult RunBlendMatrix(Gpu& gpu, const MatrixOptions& options) {
 
     FormatStats stats{format};
     stats.toleranceSteps = ref::Tolerance(format).steps;
-    for (int ch = 0; ch < 4; ++ch) stats.termK[ch] = ref::BlendTermK(format, ch).k;
+    for (int ch = 0; ch < 4; ++ch) {
+      stats.termK[ch] = ref::BlendTermK(format, ch).k;
+      stats.termPropagated[ch] = ref::BlendTermK(format, ch).propagated;
+    }
     for (UINT k = 0; k < draws; ++k) {
       if (!drawn(k)) continue;
       ++stats.draws;
@@ -365,11 +369,15 @@ MatrixResult RunBlendMatrix(Gpu& gpu, const MatrixOptions& options) {
             error[ch] = v.error;
             magnitude[ch] = v.m;
             bound[ch] = v.bound;
-            if (v.unit > 0) stats.maxTermRatio[ch] = std::max(stats.maxTermRatio[ch], v.error / v.unit);
+            if (v.bound > 0) stats.maxTermRatio[ch] = std::max(stats.maxTermRatio[ch], v.error / v.bound);
           }
         }
         stats.tally.Add(ok);
         if (ok && verdict.usedTermBound) ++stats.neededTermBound;
+        if (out.hasSaturatedReading) {
+          ++stats.satOutOfRange;
+          if (ok && verdict.usedSaturatedReading) ++stats.satSaturatedOnly;
+        }
         for (BLEND f : AllFactors())
           if (rt.SrcBlend == f || rt.DestBlend == f || rt.SrcBlendAlpha == f || rt.DestBlendAlpha == f)
             result.perFactor[f].Add(ok);
@@ -381,7 +389,7 @@ MatrixResult RunBlendMatrix(Gpu& gpu, const MatrixOptions& options) {
           for (int ch = 0; ch < 4; ++ch) {
             const ref::ChannelVerdict& v = verdict.channels[ch];
             if (v.ok()) continue;
-            if (!v.termBoundApplies) { withinOperand = false; break; }
+            if (!v.termBoundApplies || ref::BlendTermK(format, ch).propagated) { withinOperand = false; break; }
             const double big = std::max({v.m, std::fabs(static_cast<double>(out.terms.srcOperand[ch])),
                                          std::fabs(static_cast<double>(out.terms.destOperand[ch]))});
             withinOperand = withinOperand && v.error <= ref::BlendTermK(format, ch).k * ref::BlendUnit(format, ch, big);
@@ -391,7 +399,7 @@ MatrixResult RunBlendMatrix(Gpu& gpu, const MatrixOptions& options) {
           if (result.failures.size() < MatrixResult::kMaxKeptFailures)
             result.failures.push_back(
                 {format, rt, factors[k], src0[i], src1[i], dest[i], expected, actual, steps, error, magnitude, bound,
-                 withinOperand});
+                 out.hasSaturatedReading, out.saturated.stored, withinOperand});
         }
       }
     }

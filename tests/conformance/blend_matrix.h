@@ -63,8 +63,12 @@ struct CaseFailure {
   Float4 factor, src0, src1;
   StoredColor dest, expected, actual;
   std::array<uint32_t, 4> steps;  // distance per channel (UINT32_MAX: incomparable)
-  // Term bound per channel (tolerance.h): linear error, m, k*unit(m); bound 0 where it does not apply.
+  // Term bound per channel (tolerance.h): linear error, m, bound (k*unit(m) or the
+  // float16 propagation bound); bound 0 where it does not apply.
   std::array<double, 4> error{}, magnitude{}, bound{};
+  // SRC_ALPHA_SAT with f outside [0, 1]: the saturated reading's bits (also rejected).
+  bool hadSaturatedReading = false;
+  StoredColor saturatedExpected{};
   // Diagnosis only (not applied): the channel's error is within k*unit(M) with
   // M = max(m, |Csrc|, |Cdst|), the unscaled operands, as a rearranged
   // evaluation such as dst + f*(src - dst) would produce.
@@ -86,9 +90,16 @@ struct FormatStats {
   // Cases that failed the stored-step table and passed only by the blend-term
   // bound (|gpu-ref| <= k*unit(m), ADD/SUBTRACT/REV_SUBTRACT channels).
   uint64_t neededTermBound = 0;
-  // Largest |gpu-ref| / unit(m) over channels where the term bound applies, and k.
+  // Largest |gpu-ref| / bound over channels where the term bound applies (<= 1
+  // passes by the bound), and k (propagated: float16's error-propagation bound).
   std::array<double, 4> maxTermRatio{};
   std::array<double, 4> termK{};
+  std::array<bool, 4> termPropagated{};
+  // SRC_ALPHA_SAT cases whose f = min(As, 1 - Ad) fell outside [0, 1] (float
+  // targets only), and how many of them matched only the saturated reading
+  // (f clamped to [0, 1]) rather than the FS 17.1 formula.
+  uint64_t satOutOfRange = 0;
+  uint64_t satSaturatedOnly = 0;
 };
 
 struct MatrixResult {

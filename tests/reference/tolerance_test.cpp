@@ -91,7 +91,8 @@ TEST(TermBound, KAndUnits) {
   EXPECT_EQ(BlendTermK(DXGI_FORMAT_R8G8B8A8_UNORM, 0).k, 2.0);
   EXPECT_EQ(BlendTermK(DXGI_FORMAT_R8G8B8A8_UNORM_SRGB, 0).k, 2.6);
   EXPECT_EQ(BlendTermK(DXGI_FORMAT_R8G8B8A8_UNORM_SRGB, 3).k, 2.0);  // alpha is linear UNORM
-  EXPECT_EQ(BlendTermK(DXGI_FORMAT_R16_FLOAT, 0).k, 2.25);
+  EXPECT_TRUE(BlendTermK(DXGI_FORMAT_R16_FLOAT, 0).propagated);  // Float16TermBound
+  EXPECT_FALSE(BlendTermK(DXGI_FORMAT_R32_FLOAT, 0).propagated);
   EXPECT_EQ(BlendTermK(DXGI_FORMAT_R32_FLOAT, 0).k, 2.5);
   EXPECT_EQ(BlendTermK(DXGI_FORMAT_R32_UINT, 0).k, 0.0);
   EXPECT_EQ(BlendTermK(DXGI_FORMAT_R32_FLOAT, 1).k, 0.0);  // absent channel
@@ -261,19 +262,208 @@ TEST(TermBound, Float32MinIsNotWidened) {
   EXPECT_FALSE(CompareBlend(kFmt, ref, StoredColor{{0x3F800003u, 0, 0, 0}}).ok);
 }
 
-TEST(TermBound, Float16Cancellation) {
-  // ONE/ONE/SUBTRACT of (1 + 2^-10) and 1 in float16: result 2^-10. The
-  // operands' magnitude m = |Cs| + |Cd| + |Cd| ~ 3, ULP16(m) = 2^-9, bound
-  // 2.25 * 2^-9: 4 * 2^-10 (3 ULP16 of the result away) inside, 6 * 2^-10 outside.
+TEST(TermBound, Float16CancellationOfExactInputs) {
+  // ONE/ONE/SUBTRACT of (1 + 2^-10) and 1 in float16: every input is a float16
+  // value and the factors are exact, so no rounding happens before the op, and
+  // 1 + 2^-10 - 1 is exact: the bound is the two final roundings at 2^-10
+  // (device and reference, 2^-20 each) plus the float32 slack
+  // 2^-21 * (|Cs|*2 + |Cd|*2 + |r|) = 2^-21 * (4 + 3 * 2^-10):
+  // 4 * 2^-10 is far outside; 2 stored steps pass by the table.
   constexpr DXGI_FORMAT kFmt = DXGI_FORMAT_R16_FLOAT;
   const float ulp = std::ldexp(1.0f, -10);
   const BlendOutput ref = BlendResult(kFmt, Blend(BLEND_ONE, BLEND_ONE, BLEND_OP_SUBTRACT), kOnes,
                                       Float4{1.0f + ulp, 0, 0, 0}, {}, Encode(kFmt, Float4{1.0f, 0, 0, 0}));
   ASSERT_EQ(ref.decoded[0], ulp);
-  const BlendVerdict in = CompareBlend(kFmt, ref, Encode(kFmt, Float4{4 * ulp, 0, 0, 0}));
-  EXPECT_TRUE(in.ok);
-  EXPECT_TRUE(in.usedTermBound);
-  EXPECT_FALSE(CompareBlend(kFmt, ref, Encode(kFmt, Float4{6 * ulp, 0, 0, 0})).ok);
+  const BlendVerdict exact = CompareBlend(kFmt, ref, ref.stored);
+  EXPECT_NEAR(exact.channels[0].bound, 2 * std::ldexp(1.0, -20) + std::ldexp(4.0 + 3 * ulp, -21), 1e-15);
+  EXPECT_FALSE(CompareBlend(kFmt, ref, Encode(kFmt, Float4{4 * ulp, 0, 0, 0})).ok);
+  EXPECT_TRUE(CompareBlend(kFmt, ref, StoredColor{{ref.stored.bits[0] + 2, 0, 0, 0}}).ok);  // table
+}
+
+TEST(TermBound, Float16CancellationOfRoundedInputs) {
+  // The same SUBTRACT with a source that is not a float16 value: 1 + 1.5 * 2^-10
+  // converts toward zero to 1 + 2^-10 (conv = 2^-11), so a device that rounds
+  // its inputs first (FS 17.5, FS 3.2.2) returns 2^-10 where the exact result
+  // is 1.5 * 2^-10: the bound holds that, not a 3 * 2^-10 error.
+  constexpr DXGI_FORMAT kFmt = DXGI_FORMAT_R16_FLOAT;
+  const float ulp = std::ldexp(1.0f, -10);
+  const BlendOutput ref = BlendResult(kFmt, Blend(BLEND_ONE, BLEND_ONE, BLEND_OP_SUBTRACT), kOnes,
+                                      Float4{1.0f + 1.5f * ulp, 0, 0, 0}, {}, Encode(kFmt, Float4{1.0f, 0, 0, 0}));
+  ASSERT_EQ(ref.decoded[0], 1.5f * ulp);
+  EXPECT_TRUE(CompareBlend(kFmt, ref, Encode(kFmt, Float4{ulp, 0, 0, 0})).ok);
+  EXPECT_TRUE(CompareBlend(kFmt, ref, Encode(kFmt, Float4{2 * ulp, 0, 0, 0})).ok);
+  EXPECT_FALSE(CompareBlend(kFmt, ref, Encode(kFmt, Float4{4.5f * ulp, 0, 0, 0})).ok);
+}
+
+TEST(Float16Bound, ConversionAndFactorErrors) {
+  // conv(x) = |x - RTZ16(x)|: 0 for float16 values, below one ULP otherwise.
+  EXPECT_EQ(Float16ConversionError(1.0), 0.0);
+  EXPECT_EQ(Float16ConversionError(-2.5), 0.0);
+  EXPECT_EQ(Float16ConversionError(static_cast<float>(1.0 / 3.0)), 1.0 / 3.0 - 0.333251953125 + (static_cast<float>(1.0 / 3.0) - 1.0 / 3.0));
+  EXPECT_NEAR(Float16ConversionError(10.8984337f), 10.8984337f - 10.890625, 1e-9);  // the H100's RTZ
+  EXPECT_EQ(Float16ConversionError(70000.0), 70000.0 - 65504.0);                   // FS 3.2.2 clamp
+  // Factors.
+  EXPECT_EQ(Float16FactorError({BLEND_ONE, 5.3f, 0}), 0.0);
+  EXPECT_EQ(Float16FactorError({BLEND_ZERO, 5.3f, 0}), 0.0);
+  EXPECT_EQ(Float16FactorError({BLEND_DEST_ALPHA, 0.75f, 0}), 0.0);
+  EXPECT_NEAR(Float16FactorError({BLEND_SRC_ALPHA, 10.8984337f, 0}), 10.8984337f - 10.890625, 1e-9);
+  // 1 - x with x and 1 - x float16 values: exact.
+  EXPECT_EQ(Float16FactorError({BLEND_INV_SRC_ALPHA, 0.25f, 0}), 0.0);
+  // 1 - x with x rounded first: conv(x) + one ULP of 1 - x.
+  const float x = 0.999f;
+  EXPECT_NEAR(Float16FactorError({BLEND_INV_SRC_ALPHA, x, 0}),
+              Float16ConversionError(x) + std::ldexp(1.0, -20), 1e-12);  // 1 - x ~ 0.001: ULP 2^-20
+  // SRC_ALPHA_SAT: the larger of its two inputs' errors.
+  EXPECT_EQ(Float16FactorError({BLEND_SRC_ALPHA_SAT, 0.5f, 0.25f}), 0.0);
+  EXPECT_NEAR(Float16FactorError({BLEND_SRC_ALPHA_SAT, 10.8984337f, 0.25f}), 10.8984337f - 10.890625, 1e-9);
+}
+
+// The first recorded H100 case (docs/conformance_gpu.md): R16G16B16A16_FLOAT,
+// RGB SRC_COLOR/INV_SRC1_COLOR/ADD, src0.r = 10.8984337, src1.r = 0, dest.r =
+// 0x3dbc (1.43359375). D3D11's value: 10.8984337^2 + 1.43359375 = 120.21...
+// -> 0x5783 (120.1875, toward zero). The H100 rounds src0 toward zero to
+// 10.890625 (FS 3.2.2), squares it (118.606) and stores 120.0 = 0x5780: 3 ULPs
+// (0.0625 each) off, 0.1875 absolute; the old 2.25 ULP(m) bound was 0.141.
+struct H100Case {
+  DXGI_FORMAT format = DXGI_FORMAT_R16G16B16A16_FLOAT;
+  RENDER_TARGET_BLEND_DESC blend = [] {
+    RENDER_TARGET_BLEND_DESC b = Blend(BLEND_SRC_COLOR, BLEND_INV_SRC1_COLOR, BLEND_OP_ADD);
+    b.SrcBlendAlpha = BLEND_INV_SRC_ALPHA;
+    b.DestBlendAlpha = BLEND_BLEND_FACTOR;
+    b.BlendOpAlpha = BLEND_OP_MAX;
+    return b;
+  }();
+  Float4 src0{10.8984337f, -18.7486877f, -1.42377734f, 0.52737236f};
+  Float4 src1{0.0f, 0.269391775f, -1.67019939f, 0.610658169f};
+  Float4 factor{-1.83523095f, -0.637968302f, 1.15725684f, -1.27505267f};
+  StoredColor dest{{0x3dbc, 0x41cd, 0x4144, 0x3898}};
+  StoredColor actual{{0x5780, 0x5d84, 0x4887, 0x3898}};
+  BlendOutput Ref(const RENDER_TARGET_BLEND_DESC& b) const { return BlendResult(format, b, factor, src0, src1, dest); }
+};
+
+TEST(Float16Bound, AcceptsTheH100) {
+  const H100Case c;
+  const BlendOutput ref = c.Ref(c.blend);
+  ASSERT_EQ(ref.stored, (StoredColor{{0x5783, 0x5d86, 0x4887, 0x3898}}));
+  const BlendVerdict v = CompareBlend(c.format, ref, c.actual);
+  EXPECT_TRUE(v.ok);
+  EXPECT_TRUE(v.usedTermBound);
+  EXPECT_FALSE(v.channels[0].withinTable);
+  EXPECT_NEAR(v.channels[0].error, 0.1875, 1e-9);
+  // The bound is a few ULPs (0.0625 at 64..128) of the blend: about 4 here.
+  EXPECT_GT(v.channels[0].bound, 0.1875);
+  EXPECT_LT(v.channels[0].bound, 6 * 0.0625);
+}
+
+StoredColor Moved(StoredColor c, int channel, int steps) {
+  // float16 ordered move (positive values here).
+  c.bits[channel] = static_cast<uint32_t>(static_cast<int>(c.bits[channel]) + steps);
+  return c;
+}
+
+TEST(Float16Bound, RejectsRealBugs) {
+  const H100Case c;
+  const BlendOutput ref = c.Ref(c.blend);
+  // 16 float16 ULPs off (on top of, or instead of, the H100's 3).
+  EXPECT_FALSE(CompareBlend(c.format, ref, Moved(c.actual, 0, -16)).ok);
+  EXPECT_FALSE(CompareBlend(c.format, ref, Moved(ref.stored, 0, 16)).ok);
+  EXPECT_FALSE(CompareBlend(c.format, ref, Moved(ref.stored, 1, 16)).ok);  // G: -337 region, negative: still 16 ULPs
+  // 8 ULPs are already out for R: the bound is about 4 there.
+  EXPECT_FALSE(CompareBlend(c.format, ref, Moved(ref.stored, 0, 8)).ok);
+  // Wrong factor: DestBlend SRC1_COLOR instead of INV_SRC1_COLOR.
+  RENDER_TARGET_BLEND_DESC wrongFactor = c.blend;
+  wrongFactor.DestBlend = BLEND_SRC1_COLOR;
+  EXPECT_FALSE(CompareBlend(c.format, ref, c.Ref(wrongFactor).stored).ok);
+  // Source and destination factors swapped.
+  RENDER_TARGET_BLEND_DESC swapped = c.blend;
+  std::swap(swapped.SrcBlend, swapped.DestBlend);
+  EXPECT_FALSE(CompareBlend(c.format, ref, c.Ref(swapped).stored).ok);
+  // ADD evaluated as SUBTRACT, and as REV_SUBTRACT.
+  RENDER_TARGET_BLEND_DESC sub = c.blend;
+  sub.BlendOp = BLEND_OP_SUBTRACT;
+  EXPECT_FALSE(CompareBlend(c.format, ref, c.Ref(sub).stored).ok);
+  sub.BlendOp = BLEND_OP_REV_SUBTRACT;
+  EXPECT_FALSE(CompareBlend(c.format, ref, c.Ref(sub).stored).ok);
+  // A wrong alpha factor (SRC_ALPHA for INV_SRC_ALPHA) under MAX changes nothing
+  // (MAX ignores the factors), so it is not a detectable bug: same bits.
+  RENDER_TARGET_BLEND_DESC alphaFactor = c.blend;
+  alphaFactor.SrcBlendAlpha = BLEND_SRC_ALPHA;
+  EXPECT_EQ(c.Ref(alphaFactor).stored, ref.stored);
+}
+
+TEST(Float16Bound, InverseFactorNearOneAllowsTheRoundingOfX) {
+  // INV_SRC_ALPHA with As = 0.9990234 + a bit: x converts toward zero to
+  // 0.9990234375 (1 - x' = 2^-10), where the exact 1 - x is ~0.00095; the
+  // product with Cs = 8 moves by 8 * conv(x). The bound allows that (the rounding
+  // of x is most of the factor: FS 17.5 + FS 3.2.2), in ULPs of the result it is
+  // many, and twice the allowance is still out.
+  constexpr DXGI_FORMAT kFmt = DXGI_FORMAT_R16_FLOAT;
+  const float as = 0.99902344f + 3e-5f;
+  const RENDER_TARGET_BLEND_DESC b = Blend(BLEND_INV_SRC_ALPHA, BLEND_ZERO, BLEND_OP_ADD);
+  const BlendOutput ref = BlendResult(kFmt, b, kOnes, Float4{8.0f, 0, 0, as}, {}, StoredColor{});
+  const double device = 8.0 * (1.0 - static_cast<double>(HalfToFloat(FloatToHalf(as, HalfRounding::TowardZero))));
+  const StoredColor h100Like{{FloatToHalf(static_cast<float>(device), HalfRounding::TowardZero), 0, 0, 0}};
+  const BlendVerdict v = CompareBlend(kFmt, ref, h100Like);
+  EXPECT_TRUE(v.ok);
+  EXPECT_GT(v.channels[0].steps, 16u);
+  const double twice = ref.decoded[0] + 2.0 * (device - ref.decoded[0]) + 2.0 * v.channels[0].bound;
+  EXPECT_FALSE(CompareBlend(kFmt, ref, StoredColor{{FloatToHalf(static_cast<float>(twice), HalfRounding::TowardZero), 0, 0, 0}}).ok);
+}
+
+TEST(SrcAlphaSat, OutOfRangeReportsBothReadings) {
+  // The recorded H100 case: R16G16B16A16_FLOAT, RGB SRC_ALPHA_SAT/INV_SRC_ALPHA/ADD,
+  // alpha DEST_ALPHA/ONE/ADD, As = 0, Ad = 0x3f0d (1.7626953125):
+  // f = min(0, 1 - 1.763) = -0.763 (FS 17.1 formula) or 0 (saturated). The H100
+  // kept the destination, the saturated reading exactly.
+  constexpr DXGI_FORMAT kFmt = DXGI_FORMAT_R16G16B16A16_FLOAT;
+  RENDER_TARGET_BLEND_DESC b = Blend(BLEND_SRC_ALPHA_SAT, BLEND_INV_SRC_ALPHA, BLEND_OP_ADD);
+  b.SrcBlendAlpha = BLEND_DEST_ALPHA;
+  b.DestBlendAlpha = BLEND_ONE;
+  const StoredColor dest{{0xbcb7, 0x4193, 0xbd68, 0x3f0d}};
+  const BlendOutput ref = BlendResult(kFmt, b, Float4{2.32273436f, -1.64107597f, 0.132224798f, 2.84858418f},
+                                      Float4{38.7201614f, 1.30498123f, 2.25068426f, 0.0f}, {}, dest);
+  EXPECT_EQ(ref.stored, (StoredColor{{0xcfad, 0x3f2a, 0xc222, 0x3f0d}}));  // the formula, as recorded
+  ASSERT_TRUE(ref.hasSaturatedReading);
+  EXPECT_EQ(ref.saturated.stored, dest);
+  EXPECT_EQ(ref.saturated.terms.srcFactor[0], 0.0f);
+  const BlendVerdict h100 = CompareBlend(kFmt, ref, dest);
+  EXPECT_TRUE(h100.ok);
+  EXPECT_TRUE(h100.usedSaturatedReading);
+  const BlendVerdict formula = CompareBlend(kFmt, ref, ref.stored);
+  EXPECT_TRUE(formula.ok);
+  EXPECT_FALSE(formula.usedSaturatedReading);
+  // Neither reading: f = 1 (clamped the wrong way) is rejected.
+  RENDER_TARGET_BLEND_DESC one = b;
+  one.SrcBlend = BLEND_ONE;
+  EXPECT_FALSE(CompareBlend(kFmt, ref, BlendResult(kFmt, one, kOnes, Float4{38.7201614f, 1.30498123f, 2.25068426f, 0.0f},
+                                                    {}, dest).stored).ok);
+  // A pixel may not mix the readings channel by channel: R from one, G from the other.
+  StoredColor mixed = dest;
+  mixed.bits[0] = ref.stored.bits[0];
+  EXPECT_FALSE(CompareBlend(kFmt, ref, mixed).ok);
+}
+
+TEST(SrcAlphaSat, InRangeHasOneReading) {
+  // f within [0, 1], and every UNORM case (inputs clamped first, FS 17.5): one reading.
+  RENDER_TARGET_BLEND_DESC b = Blend(BLEND_SRC_ALPHA_SAT, BLEND_ONE, BLEND_OP_ADD);
+  EXPECT_FALSE(BlendResult(DXGI_FORMAT_R16G16B16A16_FLOAT, b, kOnes, Float4{1, 1, 1, 0.25f}, {},
+                           Encode(DXGI_FORMAT_R16G16B16A16_FLOAT, Float4{0, 0, 0, 0.5f}))
+                   .hasSaturatedReading);
+  EXPECT_FALSE(BlendResult(DXGI_FORMAT_R8G8B8A8_UNORM, b, kOnes, Float4{1, 1, 1, 1.5f}, {},
+                           StoredColor{{0, 0, 0, 0}})
+                   .hasSaturatedReading);
+  // Above 1 on a float target: As = 3, Ad = -1: f = 2 or 1.
+  const BlendOutput above = BlendResult(DXGI_FORMAT_R32G32B32A32_FLOAT, b, kOnes, Float4{1, 1, 1, 3}, {},
+                                        Encode(DXGI_FORMAT_R32G32B32A32_FLOAT, Float4{0, 0, 0, -1}));
+  ASSERT_TRUE(above.hasSaturatedReading);
+  EXPECT_EQ(above.decoded[0], 2.0f);
+  EXPECT_EQ(above.saturated.decoded[0], 1.0f);
+  // SRC_ALPHA_SAT only in the alpha blend (factor 1 there): no second reading.
+  RENDER_TARGET_BLEND_DESC alphaOnly = Blend(BLEND_ONE, BLEND_ONE, BLEND_OP_ADD);
+  alphaOnly.SrcBlendAlpha = BLEND_SRC_ALPHA_SAT;
+  EXPECT_FALSE(BlendResult(DXGI_FORMAT_R32G32B32A32_FLOAT, alphaOnly, kOnes, Float4{1, 1, 1, 3}, {},
+                           Encode(DXGI_FORMAT_R32G32B32A32_FLOAT, Float4{0, 0, 0, -1}))
+                   .hasSaturatedReading);
 }
 
 TEST(TermBound, UintStaysExact) {

@@ -34,7 +34,39 @@ struct BlenderInputs {
   Float4 src1;    // SV_Target1 (dual source)
   Float4 dest;    // the render target, decoded (sRGB decoded to linear, FS 17.4)
   Float4 factor;  // OMSetBlendState's blend factor
+  SatReading sat = SatReading::Formula;
 };
+
+// SRC_ALPHA_SAT's f before any reading is applied.
+float SrcAlphaSat(const BlenderInputs& in) { return std::fmin(in.src0[kAlpha], 1.0f - in.dest[kAlpha]); }
+
+// What the factor is made of, for the tolerance model (FactorSource).
+FactorSource SourceOf(BLEND blend, int channel, const BlenderInputs& in) {
+  FactorSource s{blend, 0.0f, 0.0f};
+  switch (blend) {
+    case BLEND_ZERO:
+    case BLEND_ONE: break;
+    case BLEND_SRC_COLOR:
+    case BLEND_INV_SRC_COLOR: s.input = in.src0[channel]; break;
+    case BLEND_SRC_ALPHA:
+    case BLEND_INV_SRC_ALPHA: s.input = in.src0[kAlpha]; break;
+    case BLEND_DEST_ALPHA:
+    case BLEND_INV_DEST_ALPHA: s.input = in.dest[kAlpha]; break;
+    case BLEND_DEST_COLOR:
+    case BLEND_INV_DEST_COLOR: s.input = in.dest[channel]; break;
+    case BLEND_SRC_ALPHA_SAT:
+      s.input = in.src0[kAlpha];
+      s.input2 = in.dest[kAlpha];
+      break;
+    case BLEND_BLEND_FACTOR:
+    case BLEND_INV_BLEND_FACTOR: s.input = in.factor[channel]; break;
+    case BLEND_SRC1_COLOR:
+    case BLEND_INV_SRC1_COLOR: s.input = in.src1[channel]; break;
+    case BLEND_SRC1_ALPHA:
+    case BLEND_INV_SRC1_ALPHA: s.input = in.src1[kAlpha]; break;
+  }
+  return s;
+}
 
 // The factor D3D11_BLEND `blend` gives for `channel` (FS 17.1, the enum comments).
 float Factor(BLEND blend, int channel, const BlenderInputs& in) {
@@ -49,9 +81,11 @@ float Factor(BLEND blend, int channel, const BlenderInputs& in) {
     case BLEND_INV_DEST_ALPHA: return 1.0f - in.dest[kAlpha];
     case BLEND_DEST_COLOR: return in.dest[channel];
     case BLEND_INV_DEST_COLOR: return 1.0f - in.dest[channel];
-    // (f,f,f,1), f = min(1 - RT(N).a, oN.a)
+    // (f,f,f,1), f = min(1 - RT(N).a, oN.a) (FS 17.1); the Saturated reading
+    // clamps f to [0, 1] (SatReading, blend.h).
     case BLEND_SRC_ALPHA_SAT:
-      return channel == kAlpha ? 1.0f : std::fmin(in.src0[kAlpha], 1.0f - in.dest[kAlpha]);
+      if (channel == kAlpha) return 1.0f;
+      return in.sat == SatReading::Saturated ? Saturate(SrcAlphaSat(in)) : SrcAlphaSat(in);
     case BLEND_BLEND_FACTOR: return in.factor[channel];
     case BLEND_INV_BLEND_FACTOR: return 1.0f - in.factor[channel];
     case BLEND_SRC1_COLOR: return in.src1[channel];
@@ -67,6 +101,8 @@ float Factor(BLEND blend, int channel, const BlenderInputs& in) {
 // The products are recorded in `terms` (channel `c`) for the tolerance model.
 float Combine(BLEND_OP op, float src, float srcFactor, float dest, float destFactor, BlendTerms& terms,
               int c) {
+  terms.srcFactor[c] = srcFactor;
+  terms.destFactor[c] = destFactor;
   const float srcTerm = src * srcFactor;
   const float destTerm = dest * destFactor;
   const bool arithmetic = op == BLEND_OP_ADD || op == BLEND_OP_SUBTRACT || op == BLEND_OP_REV_SUBTRACT;
@@ -90,17 +126,26 @@ float Combine(BLEND_OP op, float src, float srcFactor, float dest, float destFac
 // The blended colour before conversion to the target format; Encode then clamps
 // it to the target's range (FS 17.5: "there is a clamp to the RenderTarget range
 // after blend") and quantises it.
+BlenderInputs Inputs(DXGI_FORMAT format, const Float4& blendFactor, const Float4& src0, const Float4& src1,
+                     const StoredColor& dest, SatReading sat) {
+  return {EnterBlender(format, src0), EnterBlender(format, src1), Decode(format, dest),
+          EnterBlender(format, blendFactor), sat};
+}
+
 Float4 Blend(DXGI_FORMAT format, const RENDER_TARGET_BLEND_DESC& blend, const Float4& blendFactor,
-             const Float4& src0, const Float4& src1, const StoredColor& dest, BlendTerms& terms) {
-  const BlenderInputs in{EnterBlender(format, src0), EnterBlender(format, src1),
-                         Decode(format, dest), EnterBlender(format, blendFactor)};
+             const Float4& src0, const Float4& src1, const StoredColor& dest, SatReading sat, BlendTerms& terms) {
+  const BlenderInputs in = Inputs(format, blendFactor, src0, src1, dest, sat);
   Float4 result{};
   for (int c = 0; c < kAlpha; ++c) {
     result[c] = Combine(blend.BlendOp, in.src0[c], Factor(blend.SrcBlend, c, in), in.dest[c],
                         Factor(blend.DestBlend, c, in), terms, c);
+    terms.srcFactorSource[c] = SourceOf(blend.SrcBlend, c, in);
+    terms.destFactorSource[c] = SourceOf(blend.DestBlend, c, in);
   }
   result[kAlpha] = Combine(blend.BlendOpAlpha, in.src0[kAlpha], Factor(blend.SrcBlendAlpha, kAlpha, in),
                            in.dest[kAlpha], Factor(blend.DestBlendAlpha, kAlpha, in), terms, kAlpha);
+  terms.srcFactorSource[kAlpha] = SourceOf(blend.SrcBlendAlpha, kAlpha, in);
+  terms.destFactorSource[kAlpha] = SourceOf(blend.DestBlendAlpha, kAlpha, in);
   for (float& channel : result) channel = FlushDenorm(channel);
   return result;
 }
@@ -116,13 +161,12 @@ StoredColor ApplyWriteMask(UINT8 writeMask, const StoredColor& written, const St
 
 }  // namespace
 
-BlendOutput BlendResult(DXGI_FORMAT format, const RENDER_TARGET_BLEND_DESC& blend,
-                        const Float4& blendFactor, const Float4& src0, const Float4& src1,
-                        const StoredColor& dest) {
+BlendReading BlendReadingOf(DXGI_FORMAT format, const RENDER_TARGET_BLEND_DESC& blend, const Float4& blendFactor,
+                            const Float4& src0, const Float4& src1, const StoredColor& dest, SatReading sat) {
   // Integer targets are never blended; BlendEnable FALSE writes the converted source.
   const bool blends = blend.BlendEnable != FALSE && !IsUintFormat(format);
   BlendTerms terms;
-  const Float4 color = blends ? Blend(format, blend, blendFactor, src0, src1, dest, terms) : src0;
+  const Float4 color = blends ? Blend(format, blend, blendFactor, src0, src1, dest, sat, terms) : src0;
   const StoredColor stored = ApplyWriteMask(blend.RenderTargetWriteMask, Encode(format, color), dest);
   for (int c = 0; c < 4; ++c) {
     // Channels the format lacks and masked channels were not written by the blender.
@@ -130,6 +174,28 @@ BlendOutput BlendResult(DXGI_FORMAT format, const RENDER_TARGET_BLEND_DESC& blen
     if (!written) terms.arithmetic[c] = false;
   }
   return {stored, Decode(format, stored), terms};
+}
+
+BlendOutput BlendResult(DXGI_FORMAT format, const RENDER_TARGET_BLEND_DESC& blend,
+                        const Float4& blendFactor, const Float4& src0, const Float4& src1,
+                        const StoredColor& dest) {
+  BlendOutput out;
+  static_cast<BlendReading&>(out) = BlendReadingOf(format, blend, blendFactor, src0, src1, dest, SatReading::Formula);
+  // The Saturated reading differs only where a blended, written colour channel
+  // uses SRC_ALPHA_SAT (its alpha factor is the constant 1) and f is outside [0, 1].
+  bool satUsed = false;
+  for (int c = 0; c < kAlpha; ++c) {
+    satUsed = satUsed || (out.terms.arithmetic[c] &&
+                          (blend.SrcBlend == BLEND_SRC_ALPHA_SAT || blend.DestBlend == BLEND_SRC_ALPHA_SAT));
+  }
+  if (satUsed) {
+    const float f = SrcAlphaSat(Inputs(format, blendFactor, src0, src1, dest, SatReading::Formula));
+    if (!(f >= 0.0f && f <= 1.0f)) {
+      out.hasSaturatedReading = true;
+      out.saturated = BlendReadingOf(format, blend, blendFactor, src0, src1, dest, SatReading::Saturated);
+    }
+  }
+  return out;
 }
 
 const RENDER_TARGET_BLEND_DESC& TargetBlendDesc(const BLEND_DESC& desc, UINT renderTarget) {

@@ -35,20 +35,25 @@ bool WithinTolerance(DXGI_FORMAT format, const StoredColor& expected, const Stor
 //
 // Per channel, in linear float space (sRGB decoded):
 //
-//   |gpu - reference| <= k(format, channel) * unit(format, channel, m)
-//   m = max(|Csrc*Fsrc|, |Cdst*Fdst|, |Csrc*Fsrc OP Cdst*Fdst|)   (BlendTerms)
+//   |gpu - reference| <= bound(format, channel)
 //
-// unit: one UNORM step 1/(2^bits-1) for UNORM (and sRGB alpha); the float32 or
-// float16 ULP at magnitude m for float formats; for sRGB colour the linear size
-// of the 8-bit sRGB step at linear magnitude m. FS 17.5 lets each product be
-// rounded at the render target's precision before the op, and those roundings
-// are at the magnitude of the products, not of the (possibly cancelled) result.
-// The derivation of each k is in tolerance.cpp. A channel conforms when it is
-// within the stored-step table above OR (blend arithmetic only) within this
-// bound; MIN / MAX, unblended writes and UINT keep the table alone.
+// UNORM, sRGB, float32: bound = k(format, channel) * unit(format, channel, m),
+//   m = max(|Csrc*Fsrc|, |Cdst*Fdst|, |Csrc*Fsrc OP Cdst*Fdst|)   (BlendTerms),
+//   widened for float32 and sRGB to the operands (OperandMagnitude, tolerance.cpp).
+//   unit: one UNORM step 1/(2^bits-1) for UNORM (and sRGB alpha); the float32
+//   ULP at m; for sRGB colour the linear size of the 8-bit sRGB step at m.
+// float16: an error-propagation bound (Float16TermBound): the device may round
+//   every blend input (source colour, blend factor, the factors' inputs and the
+//   computed 1 - x) to float16 toward zero (FS 3.2.2), then multiply and add at
+//   float16 precision (FS 3.1.5, FS 17.5); the bound adds up what each of those
+//   roundings can move the result, from the magnitudes of this case's operands.
+// The derivations are in tolerance.cpp. A channel conforms when it is within the
+// stored-step table above OR (blend arithmetic only) within this bound; MIN /
+// MAX, unblended writes and UINT keep the table alone.
 struct TermBound {
   double k = 0;            // 0: the bound does not apply to this format / channel
   const char* reason = "";
+  bool propagated = false; // float16: the bound is Float16TermBound (k is 1), not k * unit(m)
 };
 TermBound BlendTermK(DXGI_FORMAT format, int channel);
 
@@ -58,6 +63,17 @@ double TermMagnitude(const BlendTerms& terms, int channel);
 // unit(format, channel, m) in linear float space (0 for UINT / absent channels).
 double BlendUnit(DXGI_FORMAT format, int channel, double m);
 
+// float16 targets: the most a conforming device's result and the reference's
+// stored value may differ by, for one channel of ADD / SUBTRACT / REV_SUBTRACT
+// (derivation in tolerance.cpp). 0 for channels without blend arithmetic.
+double Float16TermBound(const BlendTerms& terms, int channel);
+
+// float16 helpers of that bound, exposed for the tests: |x - RTZ16(x)| (0 when x
+// is a float16 value; beyond 65504 the distance to 65504, FS 3.2.2), and the
+// error bound of a blend factor computed at float16 precision from `source`.
+double Float16ConversionError(double x);
+double Float16FactorError(const FactorSource& source);
+
 struct ChannelVerdict {
   uint32_t steps = 0;          // StoredDistance (kIncomparable: NaN / INF mismatch)
   bool withinTable = true;     // steps <= Tolerance(format).steps[channel]
@@ -66,7 +82,7 @@ struct ChannelVerdict {
   double error = 0;            // |Decode(gpu) - Decode(reference)|, linear
   double m = 0;                // TermMagnitude
   double unit = 0;             // BlendUnit(format, channel, m)
-  double bound = 0;            // k * unit
+  double bound = 0;            // k * unit, or Float16TermBound
   bool ok() const { return withinTable || (termBoundApplies && withinTermBound); }
   bool NeededTermBound() const { return !withinTable && termBoundApplies && withinTermBound; }
 };
@@ -75,9 +91,17 @@ struct BlendVerdict {
   std::array<ChannelVerdict, 4> channels{};
   bool ok = true;               // every channel conforms
   bool usedTermBound = false;   // at least one channel passed only by the term bound
+  // SRC_ALPHA_SAT with f outside [0, 1] (BlendOutput::hasSaturatedReading): the
+  // pixel failed the FS 17.1 formula reading and matched the saturated one
+  // (f clamped to [0, 1]); `channels` then describe the saturated reading.
+  bool usedSaturatedReading = false;
 };
 
-// The full check of a blended pixel against BlendResult's output.
+// One reading of the reference against the device's pixel.
+BlendVerdict CompareReading(DXGI_FORMAT format, const BlendReading& expected, const StoredColor& actual);
+
+// The full check of a blended pixel against BlendResult's output: the formula
+// reading, or (where BlendResult reports one) the saturated SRC_ALPHA_SAT reading.
 BlendVerdict CompareBlend(DXGI_FORMAT format, const BlendOutput& expected, const StoredColor& actual);
 inline bool WithinBlendTolerance(DXGI_FORMAT format, const BlendOutput& expected, const StoredColor& actual) {
   return CompareBlend(format, expected, actual).ok;

@@ -372,6 +372,16 @@ MatrixResult RunBlendMatrix(Gpu& gpu, const MatrixOptions& options) {
             if (v.bound > 0) stats.maxTermRatio[ch] = std::max(stats.maxTermRatio[ch], v.error / v.bound);
           }
         }
+        double caseRatio = 0;
+        for (int ch = 0; ch < 4; ++ch)
+          if (bound[ch] > 0) caseRatio = std::max(caseRatio, error[ch] / bound[ch]);
+        if (caseRatio > stats.closestRatio) {
+          stats.closestRatio = caseRatio;
+          stats.closestCase = CaseFailure{format, rt, factors[k], src0[i], src1[i], dest[i], expected, actual, steps,
+                                          error, magnitude, bound, out.hasSaturatedReading, out.saturated.stored,
+                                          false}
+                                  .Describe();
+        }
         stats.tally.Add(ok);
         if (ok && verdict.usedTermBound) ++stats.neededTermBound;
         if (out.hasSaturatedReading) {

@@ -100,6 +100,9 @@ struct FormatStats {
   // (f clamped to [0, 1]) rather than the FS 17.1 formula.
   uint64_t satOutOfRange = 0;
   uint64_t satSaturatedOnly = 0;
+  // The case with the largest |gpu - ref| / bound (passing or not), described.
+  double closestRatio = 0;
+  std::string closestCase;
 };
 
 struct MatrixResult {

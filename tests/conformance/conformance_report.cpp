@@ -165,6 +165,15 @@ int main(int argc, char** argv) {
         "channels where the term bound applies, whether or not they needed it (k of 0: it never applies; prop.: "
         "the float16 error-propagation bound). Cases that needed the term bound: "
      << needed << " of " << m.TotalCases() << ".\n\n";
+  md << "Closest to the bound, per format (largest |gpu - reference| / bound over a case's channels):\n\n";
+  for (const FormatStats& f : m.formats) {
+    if (f.closestCase.empty()) continue;
+    std::ostringstream r;
+    r.precision(3);
+    r << f.closestRatio;
+    md << "- " << r.str() << ": " << f.closestCase << "\n";
+  }
+  md << "\n";
   md << "## SRC_ALPHA_SAT with f outside [0, 1]\n\n| format | cases | conform by the formula reading | only by "
         "the saturated reading | fail both |\n|---|---|---|---|---|\n";
   for (const FormatStats& f : m.formats) {

@@ -223,6 +223,7 @@ class ReplayWindow {
   TranslucencyMethod method_;
   std::unique_ptr<renderer::Translucency> scene_;
   bool recreate_ = false, paused_ = false, quit_ = false;
+  std::string sceneError_;  // why the last recreation failed
 
   ComPtr<rhi::SwapChain> swapChain_;
   ComPtr<rhi::Texture2D> backBuffer_;
@@ -323,15 +324,19 @@ bool ReplayWindow::CreateResources() {
          rhi::SUCCEEDED(device_->CreateDepthStencilState(&depth, noDepth_.GetAddressOf()));
 }
 
-// (Re)creates the Translucency object and the texture its frames are uploaded into.
+// (Re)creates the Translucency object and the texture its frames are uploaded into. When
+// a recreation fails, the running scene and its settings stay and the overlay shows why.
 bool ReplayWindow::CreateScene() {
-  scene_.reset();
   std::string error;
-  scene_ = renderer::Translucency::Create(device_, ctx_, settings_, &error);
-  if (!scene_) {
+  auto scene = renderer::Translucency::Create(device_, ctx_, settings_, &error);
+  if (!scene) {
     std::fprintf(stderr, "replay: %s\n", error.c_str());
-    return false;
+    sceneError_ = error;
+    if (scene_) settings_ = scene_->settings();
+    return scene_ != nullptr;
   }
+  sceneError_.clear();
+  scene_ = std::move(scene);
   orbiting_ = false;
   times_ = {};
   rhi::TEXTURE2D_DESC desc{settings_.width, settings_.height, 1, 1, rhi::DXGI_FORMAT_R8G8B8A8_UNORM, {1, 0},
@@ -459,6 +464,8 @@ void ReplayWindow::BuildOverlay() {
     recreate_ |= ImGui::Checkbox("literal Table 4 (colored; else corrected)", &settings_.literalTable4);
     recreate_ |= ImGui::Checkbox("neutral background", &settings_.neutralBackground);
   }
+  if (!sceneError_.empty())
+    ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.4f, 1.0f), "recreating failed: %.60s", sceneError_.c_str());
   ImGui::Text("camera: %s", orbiting_ ? "orbit (C: scripted)" : "scripted (drag/wheel: orbit)");
   ImGui::TextDisabled("1-4 method  D demo  Space pause  Esc quit");
   ImGui::End();

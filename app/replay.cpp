@@ -1,15 +1,22 @@
 // replay: the translucency demos of document 000 (SPEC.md), headless and deterministic.
 //
-//   replay --demo smoke|shards --method alpha|wboit|colored|sorted [--frames N] [--size WxH] --out DIR
+//   replay --demo smoke|fire|shards --method alpha|wboit|colored|sorted [--frames N] [--size WxH] --out DIR
 //       renders frames 0..N-1 (fixed time step, seeded, camera a function of the frame index)
 //       and writes DIR/<demo>_<method>_<frame>.png for the last frame
-//       (--all-frames: every frame; --literal-table4: colored composes with Table 4 as printed)
+//       (--all-frames: every frame; --literal-table4: colored composes with Table 4 as printed).
+//       fire: flames drawn with additive blending for alpha and sorted (order-independent).
 //   replay --figures --out DIR [--size WxH] [--frames N]
 //       fig1_smoke_alpha_wboit.png (alpha | WBOIT), fig_shards_wboit_colored_sorted.png
-//       (WBOIT | colored | sorted) and per-method RMSE / PSNR against the sorted reference
-//   replay --bench [--frames N] [--size WxH]
-//       per method: frame ms (median over N frames, CPU wall time until the GPU finished) and
-//       per-pass GPU ms from TIMESTAMP queries inside a TIMESTAMP_DISJOINT query; WBOIT/alpha ratio
+//       (WBOIT | colored | sorted), fig_fire_additive_wboit_colored.png and per-method
+//       RMSE / PSNR against the sorted reference
+//   replay --bench [--scene demo|paper|heavy] [--frames N] [--warmup N] [--size WxH]
+//       per method: FPS and frame ms from the GPU (TIMESTAMP queries inside a
+//       TIMESTAMP_DISJOINT query, median over N frames), per-pass GPU ms, CPU ms per frame
+//       (RenderFrame's recording and submission, median), wall ms; WBOIT/alpha ratio.
+//       demo:  the smoke and shards demos at --size (default 640x360);
+//       paper: 1280x720, smoke of a few thousand particles over the opaque scene (Fig. 2);
+//       heavy: 1920x1080, 1M particles plus 10k instanced shards in one frame.
+//       --warmup defaults to the updates the smoke needs to reach its steady state.
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb_image_write.h>
 
@@ -45,6 +52,8 @@ struct Options {
   uint32_t width = 640, height = 360;
   std::string out = "out/replay";
   bool figures = false, bench = false, allFrames = false, literalTable4 = false;
+  std::string scene = "demo";  // --bench: demo | paper | heavy
+  int warmup = -1;
 };
 
 std::unique_ptr<renderer::Translucency> Make(rhi::Device* device, rhi::DeviceContext* ctx,
@@ -55,7 +64,7 @@ std::unique_ptr<renderer::Translucency> Make(rhi::Device* device, rhi::DeviceCon
   return t;
 }
 
-int DefaultFrames(TranslucencyDemo demo) { return demo == TranslucencyDemo::Smoke ? 120 : 1; }
+int DefaultFrames(TranslucencyDemo demo) { return demo == TranslucencyDemo::Shards ? 1 : 120; }
 
 // Renders frames 0..frames-1 with one method and returns the last frame.
 std::vector<uint8_t> Replay(rhi::Device* device, rhi::DeviceContext* ctx, const renderer::TranslucencySettings& s,
@@ -106,7 +115,7 @@ int RunFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
   const TranslucencyMethod methods[4] = {TranslucencyMethod::Alpha, TranslucencyMethod::Wboit,
                                          TranslucencyMethod::Colored, TranslucencyMethod::Sorted};
   std::printf("%-8s %-8s %10s %10s\n", "demo", "method", "RMSE", "PSNR dB");
-  for (TranslucencyDemo demo : {TranslucencyDemo::Smoke, TranslucencyDemo::Shards}) {
+  for (TranslucencyDemo demo : {TranslucencyDemo::Smoke, TranslucencyDemo::Fire, TranslucencyDemo::Shards}) {
     renderer::TranslucencySettings s;
     s.demo = demo;
     s.width = o.width, s.height = o.height;
@@ -124,6 +133,9 @@ int RunFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
       WritePng((std::filesystem::path(o.out) / "fig1_smoke_alpha_wboit.png").string(), fig, w, o.height);
       auto ref = SideBySide({images[1], images[2], images[3]}, o.width, o.height, &w);
       WritePng((std::filesystem::path(o.out) / "smoke_wboit_colored_sorted.png").string(), ref, w, o.height);
+    } else if (demo == TranslucencyDemo::Fire) {
+      auto fig = SideBySide({images[0], images[1], images[2]}, o.width, o.height, &w);
+      WritePng((std::filesystem::path(o.out) / "fig_fire_additive_wboit_colored.png").string(), fig, w, o.height);
     } else {
       auto fig = SideBySide({images[1], images[2], images[3]}, o.width, o.height, &w);
       WritePng((std::filesystem::path(o.out) / "fig_shards_wboit_colored_sorted.png").string(), fig, w, o.height);
@@ -138,44 +150,95 @@ double Median(std::vector<double> v) {
   return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
-int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
-  const int frames = o.frames > 0 ? o.frames : 60;
-  const int warmup = 60;  // the smoke reaches its steady state before timing starts
-  std::printf("replay --bench on %s, %ux%u, %d timed frames after %d warm-up frames\n", device->GetAdapterName(),
-              o.width, o.height, frames, warmup);
-  std::printf("%-7s %-8s %9s %9s %9s %9s %9s %9s %6s\n", "demo", "method", "frame ms", "FPS", "opaque", "update",
-              "3D pass", "compose", "GPU");
-  for (TranslucencyDemo demo : {TranslucencyDemo::Smoke, TranslucencyDemo::Shards}) {
-    double frameMs[4] = {};
-    const TranslucencyMethod methods[4] = {TranslucencyMethod::Alpha, TranslucencyMethod::Wboit,
-                                           TranslucencyMethod::Colored, TranslucencyMethod::Sorted};
-    for (int mi = 0; mi < 4; ++mi) {
+struct BenchCase {
+  std::string name;
+  renderer::TranslucencySettings settings;
+};
+
+// The scenes of --bench: the demos at --size, or the paper-like and heavy scenes.
+std::vector<BenchCase> BenchCases(const Options& o) {
+  std::vector<BenchCase> cases;
+  if (o.scene == "paper") {
+    renderer::TranslucencySettings s;
+    s.demo = TranslucencyDemo::Smoke;
+    s.width = 1280, s.height = 720;
+    s.rule = {32, 2, 40, 60};  // steady state ~4,500 particles (the paper's demo: a few thousand)
+    cases.push_back({"paper", s});
+  } else if (o.scene == "heavy") {
+    renderer::TranslucencySettings s;
+    s.demo = TranslucencyDemo::Smoke;
+    s.width = 1920, s.height = 1080;
+    s.rule = {4096, 8, 20, 22};  // steady state ~1.0M particles (4096 * (1 + 8 * 30.5))
+    s.particleSize = 0.05f;
+    s.extraShards = 10000;
+    cases.push_back({"heavy", s});
+  } else {
+    for (TranslucencyDemo demo : {TranslucencyDemo::Smoke, TranslucencyDemo::Shards}) {
       renderer::TranslucencySettings s;
       s.demo = demo;
       s.width = o.width, s.height = o.height;
-      s.timestamps = true;
+      cases.push_back({renderer::ToString(demo), s});
+    }
+  }
+  return cases;
+}
+
+int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
+  if (o.scene != "demo" && o.scene != "paper" && o.scene != "heavy") Fail("--scene takes demo, paper or heavy");
+  const int frames = o.frames > 0 ? o.frames : 60;
+  std::printf("replay --bench --scene %s on %s, %d timed frames (medians)\n", o.scene.c_str(),
+              device->GetAdapterName(), frames);
+  for (const BenchCase& bc : BenchCases(o)) {
+    renderer::TranslucencySettings base = bc.settings;
+    base.timestamps = true;
+    const bool particles = base.demo != TranslucencyDemo::Shards;
+    // Warm-up: the updates the smoke needs to reach its steady state (the longest life).
+    const int warmup = o.warmup >= 0 ? o.warmup : particles ? int(base.rule.minLife + base.rule.lifeRange) : 2;
+    std::printf("\n%s: %ux%u, %s%s, %d warm-up frames\n", bc.name.c_str(), base.width, base.height,
+                renderer::ToString(base.demo), base.extraShards ? " + shards" : "", warmup);
+    std::printf("%-8s %9s %9s %9s %9s %9s %9s %9s %9s %9s %10s\n", "method", "FPS(GPU)", "GPU ms", "opaque",
+                "update", "3D pass", "compose", "CPU ms", "wall ms", "particles", "shards");
+    double gpuMs[4] = {}, cpuMs[4] = {};
+    const TranslucencyMethod methods[4] = {TranslucencyMethod::Alpha, TranslucencyMethod::Wboit,
+                                           TranslucencyMethod::Colored, TranslucencyMethod::Sorted};
+    for (int mi = 0; mi < 4; ++mi) {
+      renderer::TranslucencySettings s = base;
+      s.countParticles = false;
       auto t = Make(device, ctx, s);
       for (int i = 0; i < warmup; ++i) {
         t->RenderFrame(methods[mi]);
         t->LastTimes();
       }
-      std::vector<double> wall, opaque, update, pass3d, compose, gpu;
+      std::vector<double> wall, cpu, opaque, update, pass3d, compose, gpu;
       for (int i = 0; i < frames; ++i) {
         auto start = std::chrono::steady_clock::now();
         t->RenderFrame(methods[mi]);
+        auto recorded = std::chrono::steady_clock::now();
         renderer::PassTimes times = t->LastTimes();  // waits for the GPU
-        wall.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        auto done = std::chrono::steady_clock::now();
+        cpu.push_back(std::chrono::duration<double, std::milli>(recorded - start).count());
+        wall.push_back(std::chrono::duration<double, std::milli>(done - start).count());
         if (!times.valid) continue;
         opaque.push_back(times.opaqueMs), update.push_back(times.updateMs), pass3d.push_back(times.transparencyMs);
         compose.push_back(times.composeMs), gpu.push_back(times.totalMs);
       }
-      frameMs[mi] = Median(wall);
-      std::printf("%-7s %-8s %9.3f %9.1f %9.3f %9.3f %9.3f %9.3f %6.3f\n", renderer::ToString(demo),
-                  renderer::ToString(methods[mi]), frameMs[mi], 1000.0 / frameMs[mi], Median(opaque), Median(update),
-                  Median(pass3d), Median(compose), Median(gpu));
+      gpuMs[mi] = Median(gpu), cpuMs[mi] = Median(cpu);
+      // The live count of the last frame (an extra SO_STATISTICS frame, not timed).
+      uint64_t live = 0;
+      if (particles) {
+        t->RenderFrame(TranslucencyMethod::Sorted);  // the sorted method always counts
+        live = t->particleCount();
+        t->LastTimes();
+      }
+      std::printf("%-8s %9.1f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9llu %10u\n",
+                  renderer::ToString(methods[mi]), gpuMs[mi] > 0 ? 1000.0 / gpuMs[mi] : 0.0, gpuMs[mi],
+                  Median(opaque), Median(update), Median(pass3d), Median(compose), cpuMs[mi], Median(wall),
+                  static_cast<unsigned long long>(live),
+                  base.demo == TranslucencyDemo::Shards ? base.shardCount : base.extraShards);
     }
-    std::printf("%-7s WBOIT/alpha frame-time ratio: %.3f (paper, smoke on D3D11: 1.183/0.935 = 1.265)\n",
-                renderer::ToString(demo), frameMs[1] / frameMs[0]);
+    std::printf("%s: WBOIT/alpha GPU frame-time ratio %.3f (target <= 1.27; paper, smoke on D3D11: "
+                "1.183/0.935 = 1.265); CPU ms per frame: alpha %.3f, WBOIT %.3f\n",
+                bc.name.c_str(), gpuMs[0] > 0 ? gpuMs[1] / gpuMs[0] : 0.0, cpuMs[0], cpuMs[1]);
   }
   return 0;
 }
@@ -193,7 +256,7 @@ int main(int argc, char** argv) {
       return argv[++i];
     };
     if (a == "--demo") {
-      if (!renderer::ParseDemo(next(), &o.demo)) Fail("--demo takes smoke or shards");
+      if (!renderer::ParseDemo(next(), &o.demo)) Fail("--demo takes smoke, fire or shards");
     } else if (a == "--method") {
       if (!renderer::ParseMethod(next(), &o.method)) Fail("--method takes alpha, wboit, colored or sorted");
       haveMethod = true;
@@ -209,14 +272,18 @@ int main(int argc, char** argv) {
       o.figures = true;
     } else if (a == "--bench") {
       o.bench = true;
+    } else if (a == "--scene") {
+      o.scene = next();
+    } else if (a == "--warmup") {
+      o.warmup = std::atoi(next().c_str());
     } else if (a == "--all-frames") {
       o.allFrames = true;
     } else if (a == "--literal-table4") {
       o.literalTable4 = true;
     } else {
       Fail("unknown argument " + a +
-           "\nusage: replay --demo smoke|shards --method alpha|wboit|colored|sorted [--frames N] [--size WxH] --out DIR"
-           "\n       replay --figures --out DIR\n       replay --bench [--frames N]");
+           "\nusage: replay --demo smoke|fire|shards --method alpha|wboit|colored|sorted [--frames N] [--size WxH] --out DIR"
+           "\n       replay --figures --out DIR\n       replay --bench [--scene demo|paper|heavy] [--frames N] [--warmup N]");
     }
   }
   (void)haveMethod;

@@ -10,8 +10,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "hlsl/hlsl_compiler.h"
-#include "renderer/oit_blend_tables.h"
+#include "fx/effect.h"
 
 namespace renderer {
 
@@ -20,26 +19,6 @@ using namespace rhi;
 namespace {
 
 const std::string kShaderDir = PROJECT_SOURCE_ROOT "/shaders_hlsl";
-
-bool Compile(const char* file, const char* entry, const char* profile, std::vector<uint32_t>* spirv,
-             std::string* error) {
-  const std::string path = kShaderDir + "/" + file;
-  std::ifstream stream(path);
-  if (!stream) {
-    *error = path + ": cannot open";
-    return false;
-  }
-  std::stringstream text;
-  text << stream.rdbuf();
-  hlsl::CompileRequest request{text.str(), path, entry, profile, {}, {kShaderDir}};
-  hlsl::CompileResult result = hlsl::CompileHlsl(request);
-  if (!result.ok) {
-    *error = std::string(file) + ":" + entry + ": " + result.FormatErrors();
-    return false;
-  }
-  *spirv = std::move(result.spirv);
-  return true;
-}
 
 // Deterministic randomness: a hash of (seed, stream, index) -> [0, 1).
 float Random(uint32_t seed, uint32_t stream, uint32_t index) {
@@ -62,29 +41,8 @@ struct ShardInstance {
 };
 static_assert(sizeof(ShardInstance) == 80);
 
-struct OpaqueParams {
-  glm::mat4 viewProj;
-  glm::vec3 lightDir;
-  float ambient;
-};
 
-struct SmokeParams {
-  glm::mat4 viewProj;
-  glm::vec3 eye;
-  float seconds;
-  glm::vec3 acceleration;
-  float size;
-  glm::vec3 lightDir;
-  float pad;
-};
 
-struct ShardParams {
-  glm::mat4 viewProj;
-  glm::vec3 eye;
-  float surfaceTint;
-  glm::vec3 lightDir;
-  float pad;
-};
 
 struct ParticleData {
   float origin[3];
@@ -210,95 +168,95 @@ std::vector<uint8_t> PuffTexels(uint32_t size, uint32_t seed) {
   return texels;
 }
 
-template <class T>
-void Upload(DeviceContext* context, Buffer* buffer, const T& value) {
-  MAPPED_SUBRESOURCE mapped;
-  if (SUCCEEDED(context->Map(buffer, 0, MAP_WRITE_DISCARD, 0, &mapped))) {
-    std::memcpy(mapped.pData, &value, sizeof value);
-    context->Unmap(buffer, 0);
-  }
+// The effect variables the frame sets, looked up once (FX11's usual pattern).
+struct SceneVars {
+  fx::EffectMatrixVariable* viewProj = nullptr;
+  fx::EffectVectorVariable* lightDir = nullptr;
+  fx::EffectScalarVariable* ambient = nullptr;
+};
+struct SmokeVars {
+  fx::EffectScalarVariable *frame = nullptr, *spawnPerFrame = nullptr, *minLife = nullptr, *lifeRange = nullptr,
+                           *speedUp = nullptr, *seconds = nullptr, *size = nullptr, *flame = nullptr;
+  fx::EffectVectorVariable *spread = nullptr, *eye = nullptr, *acceleration = nullptr, *lightDir = nullptr;
+  fx::EffectMatrixVariable* viewProj = nullptr;
+  fx::EffectShaderResourceVariable *puff = nullptr, *accum = nullptr, *revealage = nullptr;
+};
+struct ShardVars {
+  fx::EffectMatrixVariable* viewProj = nullptr;
+  fx::EffectVectorVariable *eye = nullptr, *lightDir = nullptr;
+  fx::EffectScalarVariable* surfaceTint = nullptr;
+  fx::EffectShaderResourceVariable *accum = nullptr, *revealage = nullptr;
+};
+
+// The passes of one translucency method in one effect: the 3D transparency pass
+// and, for WBOIT and colored OIT, the 2D composing pass.
+struct MethodPasses {
+  fx::EffectPass* transparency = nullptr;
+  fx::EffectPass* compose = nullptr;
+};
+
+void SetMatrix(fx::EffectMatrixVariable* v, const glm::mat4& m) {
+  v->SetMatrixTranspose(&m[0][0]);  // GLM stores columns: the transpose of FX11's row-major array
+}
+void SetVector(fx::EffectVectorVariable* v, const glm::vec3& x) {
+  const float f[4] = {x.x, x.y, x.z, 0};
+  v->SetFloatVector(f);
 }
 
 }  // namespace
 
-const char* ToString(TranslucencyDemo demo) { return demo == TranslucencyDemo::Smoke ? "smoke" : "shards"; }
-const char* ToString(TranslucencyMethod method) {
-  switch (method) {
-    case TranslucencyMethod::Alpha: return "alpha";
-    case TranslucencyMethod::Wboit: return "wboit";
-    case TranslucencyMethod::Colored: return "colored";
-    case TranslucencyMethod::Sorted: return "sorted";
-  }
-  return "?";
-}
-bool ParseDemo(const std::string& text, TranslucencyDemo* demo) {
-  if (text == "smoke") *demo = TranslucencyDemo::Smoke;
-  else if (text == "shards") *demo = TranslucencyDemo::Shards;
-  else return false;
-  return true;
-}
-bool ParseMethod(const std::string& text, TranslucencyMethod* method) {
-  for (auto m : {TranslucencyMethod::Alpha, TranslucencyMethod::Wboit, TranslucencyMethod::Colored,
-                 TranslucencyMethod::Sorted})
-    if (text == ToString(m)) {
-      *method = m;
-      return true;
-    }
-  return false;
-}
-
 struct Translucency::Impl {
   Device* device = nullptr;
   DeviceContext* context = nullptr;
+  // Effects (shaders_hlsl/scene.fx, smoke.fx, shards.fx).
+  ComPtr<fx::Effect> sceneFx, smokeFx, shardsFx;
+  fx::EffectPass* opaquePass = nullptr;
+  fx::EffectPass* updatePass = nullptr;
+  MethodPasses passes[4];  // by TranslucencyMethod: alpha (fire: additive), wboit, colored, sorted (= OVER)
+  fx::EffectPass* shardPasses[4] = {};  // shards.fx <method>/Transparency
+  SceneVars scene;
+  SmokeVars smoke;
+  ShardVars shard;
   // Targets.
   ComPtr<Texture2D> frame, depth, accum, revealage;
   ComPtr<RenderTargetView> frameRtv, accumRtv, revealageRtv;
   ComPtr<DepthStencilView> dsv;
   ComPtr<ShaderResourceView> accumSrv, revealageSrv;
-  // States.
-  ComPtr<BlendState> over, wboitAccum, coloredAccum, wboitCompose, coloredCompose;
-  ComPtr<DepthStencilState> opaqueDepth, testNoWrite, noDepth;
-  ComPtr<RasterizerState> noCull;
-  ComPtr<SamplerState> linear;
   // Opaque.
-  ComPtr<VertexShader> opaqueVs;
-  ComPtr<PixelShader> opaquePs;
   ComPtr<InputLayout> opaqueLayout;
-  ComPtr<Buffer> opaqueVb, opaqueCb;
+  ComPtr<Buffer> opaqueVb;
   UINT opaqueVertices = 0;
-  // Smoke.
-  ComPtr<VertexShader> smokeVs;
-  ComPtr<GeometryShader> smokeGs;
-  ComPtr<PixelShader> smokePs[3];  // over, wboit, colored
-  ComPtr<InputLayout> smokeLayout;
-  ComPtr<Buffer> smokeCb, particleStaging, sortedParticles;
+  // Particles: the init buffer (the emitters) and the stream-output ping-pong pair.
+  ParticleSettings particleSettings;
+  uint32_t capacity = 0, updates = 0, current = 0;
+  ComPtr<Buffer> emitters, pingPong[2];
+  ComPtr<InputLayout> updateLayout, smokeLayout;
+  ComPtr<Buffer> particleStaging, sortedParticles;
   ComPtr<ShaderResourceView> puff;
   ComPtr<Query> soStats;
-  UINT sortedCount = 0;
   // Shards.
-  ComPtr<VertexShader> shardVs;
-  ComPtr<PixelShader> shardPs[3];
   ComPtr<InputLayout> shardLayout;
-  ComPtr<Buffer> shardVb, shardIb, instances, sortedInstances, shardCb;
-  std::vector<ShardInstance> instanceData;
+  ComPtr<Buffer> shardVb, shardIb, instances, sortedInstances;
   UINT shardIndices = 0;
-  // Compose.
-  ComPtr<VertexShader> fullscreenVs;
-  ComPtr<PixelShader> composePs;
+  std::vector<ShardInstance> instanceData;
   // Timing.
   ComPtr<Query> disjoint, stamps[5];
   bool timesPending = false;
-  bool countThisFrame = false;  // SO_STATISTICS around this frame's update (sorted needs the count)
-};
+  bool countThisFrame = false;
 
-Translucency::~Translucency() = default;
+  bool particlesOn() const { return capacity > 0; }
+};
 
 std::unique_ptr<Translucency> Translucency::Create(Device* device, DeviceContext* context,
                                                    const TranslucencySettings& settings, std::string* error) {
   std::unique_ptr<Translucency> t(new Translucency());
+  std::string local;
+  if (!error) error = &local;
   if (!t->Initialize(device, context, settings, error)) return nullptr;
   return t;
 }
+
+Translucency::~Translucency() = default;
 
 bool Translucency::Initialize(Device* device, DeviceContext* context, const TranslucencySettings& s,
                               std::string* error) {
@@ -311,19 +269,35 @@ bool Translucency::Initialize(Device* device, DeviceContext* context, const Tran
     if (error->empty()) *error = "Translucency: " + what + " failed";
     return false;
   };
-  auto vs = [&](const char* file, const char* entry, ComPtr<VertexShader>* out, std::vector<uint32_t>* code) {
-    return Compile(file, entry, "vs_5_0", code, error) &&
-           SUCCEEDED(device->CreateVertexShader(code->data(), code->size() * 4, nullptr, out->GetAddressOf()));
-  };
-  auto ps = [&](const char* file, const char* entry, ComPtr<PixelShader>* out) {
-    std::vector<uint32_t> code;
-    return Compile(file, entry, "ps_5_0", &code, error) &&
-           SUCCEEDED(device->CreatePixelShader(code.data(), code.size() * 4, nullptr, out->GetAddressOf()));
-  };
   auto buffer = [&](UINT size, USAGE usage, UINT bind, UINT cpu, const void* data, ComPtr<Buffer>* out) {
     BUFFER_DESC d{size, usage, bind, cpu, 0, 0};
     SUBRESOURCE_DATA init{data, 0, 0};
     return SUCCEEDED(device->CreateBuffer(&d, data ? &init : nullptr, out->GetAddressOf()));
+  };
+  auto load = [&](const char* file, ComPtr<fx::Effect>* out) {
+    fx::EFFECT_OPTIONS options;
+    options.IncludeDirs = {kShaderDir};
+    std::string errors;
+    options.Errors = &errors;
+    if (FAILED(fx::CreateEffectFromFile((kShaderDir + "/" + file).c_str(), options, device, out->GetAddressOf()))) {
+      *error = std::string(file) + ": " + errors;
+      return false;
+    }
+    return true;
+  };
+  auto pass = [&](fx::Effect* e, const char* technique, const char* name) -> fx::EffectPass* {
+    fx::EffectPass* p = e->GetTechniqueByName(technique)->GetPassByName(name);
+    if (!p->IsValid()) {
+      if (error->empty()) *error = std::string("Translucency: no pass ") + technique + "/" + name;
+      return nullptr;
+    }
+    return p;
+  };
+  auto layout = [&](fx::EffectPass* p, const INPUT_ELEMENT_DESC* elements, UINT n, ComPtr<InputLayout>* out) {
+    fx::PASS_DESC desc;
+    return p && SUCCEEDED(p->GetDesc(&desc)) &&
+           SUCCEEDED(device->CreateInputLayout(elements, n, desc.pIAInputSignature, desc.IAInputSignatureSize,
+                                               out->GetAddressOf()));
   };
 
   // Targets: the frame (R8G8B8A8_UNORM), depth, accum and revealage of Tables 1-4.
@@ -344,58 +318,22 @@ bool Translucency::Initialize(Device* device, DeviceContext* context, const Tran
       FAILED(device->CreateShaderResourceView(m.revealage.Get(), nullptr, m.revealageSrv.GetAddressOf())))
     return fail("creating the views");
 
-  // States.
-  BLEND_DESC over;
-  over.RenderTarget[0] = oit::TargetBlend(BLEND_SRC_ALPHA, BLEND_INV_SRC_ALPHA, BLEND_ONE, BLEND_INV_SRC_ALPHA);
-  const BLEND_DESC wboitAccum = oit::WboitAccumulateBlend(), coloredAccum = oit::ColoredAccumulateBlend(),
-                   wboitCompose = oit::WboitComposeBlend(),
-                   coloredCompose = s.literalTable4 ? oit::ColoredComposeBlendLiteral()
-                                                    : oit::ColoredComposeBlendCorrected();
-  if (FAILED(device->CreateBlendState(&over, m.over.GetAddressOf())) ||
-      FAILED(device->CreateBlendState(&wboitAccum, m.wboitAccum.GetAddressOf())) ||
-      FAILED(device->CreateBlendState(&coloredAccum, m.coloredAccum.GetAddressOf())) ||
-      FAILED(device->CreateBlendState(&wboitCompose, m.wboitCompose.GetAddressOf())) ||
-      FAILED(device->CreateBlendState(&coloredCompose, m.coloredCompose.GetAddressOf())))
-    return fail("creating the blend states");
-  DEPTH_STENCIL_DESC opaqueDepth{};  // D3D11 defaults: test LESS, write ALL
-  DEPTH_STENCIL_DESC testNoWrite = opaqueDepth;
-  testNoWrite.DepthWriteMask = DEPTH_WRITE_MASK_ZERO;
-  DEPTH_STENCIL_DESC noDepth = opaqueDepth;
-  noDepth.DepthEnable = FALSE;
-  noDepth.DepthWriteMask = DEPTH_WRITE_MASK_ZERO;
-  RASTERIZER_DESC noCull{};
-  noCull.CullMode = CULL_NONE;
-  SAMPLER_DESC linear{};
-  linear.AddressU = linear.AddressV = linear.AddressW = TEXTURE_ADDRESS_CLAMP;
-  if (FAILED(device->CreateDepthStencilState(&opaqueDepth, m.opaqueDepth.GetAddressOf())) ||
-      FAILED(device->CreateDepthStencilState(&testNoWrite, m.testNoWrite.GetAddressOf())) ||
-      FAILED(device->CreateDepthStencilState(&noDepth, m.noDepth.GetAddressOf())) ||
-      FAILED(device->CreateRasterizerState(&noCull, m.noCull.GetAddressOf())) ||
-      FAILED(device->CreateSamplerState(&linear, m.linear.GetAddressOf())))
-    return fail("creating the depth, rasterizer and sampler states");
-
-  // Opaque background.
-  std::vector<uint32_t> code;
-  if (!vs("scene_opaque.hlsl", "VSOpaque", &m.opaqueVs, &code) || !ps("scene_opaque.hlsl", "PSOpaque", &m.opaquePs))
-    return fail("the opaque shaders");
+  // Opaque background: scene.fx, technique Opaque.
+  if (!load("scene.fx", &m.sceneFx)) return fail("scene.fx");
+  m.opaquePass = pass(m.sceneFx.Get(), "Opaque", "Scene");
   const INPUT_ELEMENT_DESC opaqueElements[] = {
       {"POSITION", 0, DXGI_FORMAT_R32G32B32_FLOAT, 0, 0, INPUT_PER_VERTEX_DATA, 0},
       {"NORMAL", 0, DXGI_FORMAT_R32G32B32_FLOAT, 0, 12, INPUT_PER_VERTEX_DATA, 0},
       {"COLOR", 0, DXGI_FORMAT_R32G32B32_FLOAT, 0, 24, INPUT_PER_VERTEX_DATA, 0}};
-  if (FAILED(device->CreateInputLayout(opaqueElements, 3, code.data(), code.size() * 4,
-                                       m.opaqueLayout.GetAddressOf())))
-    return fail("the opaque input layout");
+  if (!layout(m.opaquePass, opaqueElements, 3, &m.opaqueLayout)) return fail("the opaque input layout");
+  m.scene.viewProj = m.sceneFx->GetVariableByName("ViewProj")->AsMatrix();
+  m.scene.lightDir = m.sceneFx->GetVariableByName("LightDir")->AsVector();
+  m.scene.ambient = m.sceneFx->GetVariableByName("Ambient")->AsScalar();
   std::vector<OpaqueVertex> scene = OpaqueScene(s.neutralBackground);
   m.opaqueVertices = UINT(scene.size());
   if (!buffer(UINT(scene.size() * sizeof(OpaqueVertex)), USAGE_IMMUTABLE, BIND_VERTEX_BUFFER, 0, scene.data(),
-              &m.opaqueVb) ||
-      !buffer(sizeof(OpaqueParams), USAGE_DYNAMIC, BIND_CONSTANT_BUFFER, CPU_ACCESS_WRITE, nullptr, &m.opaqueCb))
+              &m.opaqueVb))
     return fail("the opaque buffers");
-
-  // Compose.
-  if (!vs("translucency_compose.hlsl", "VSFullscreen", &m.fullscreenVs, &code) ||
-      !ps("translucency_compose.hlsl", "PSCompose", &m.composePs))
-    return fail("the compose shaders");
 
   // Timing.
   QUERY_DESC disjoint{QUERY_TIMESTAMP_DISJOINT, 0}, stamp{QUERY_TIMESTAMP, 0}, so{QUERY_SO_STATISTICS, 0};
@@ -405,42 +343,106 @@ bool Translucency::Initialize(Device* device, DeviceContext* context, const Tran
   for (auto& q : m.stamps)
     if (FAILED(device->CreateQuery(&stamp, q.GetAddressOf()))) return fail("the timestamp queries");
 
-  if (s.demo == TranslucencyDemo::Smoke) {
-    ParticleSettings ps_;
+  const bool fire = s.demo == TranslucencyDemo::Fire;
+  if (s.demo == TranslucencyDemo::Smoke || fire) {
+    ParticleSettings& ps_ = m.particleSettings;
     ps_.rule = s.rule;
-    ps_.emitterCenter = {0, 0.3f, 0.5f};
-    // A negative radius mirrors the emitter ring: emitters (and so their particles, in
-    // buffer order) run from the front of the ring to its back, so unsorted OVER draws
-    // near smoke first and far smoke on top: the failure of the paper's Fig. 1.
-    ps_.emitterRadius = -1.8f;
-    ps_.spread = {0.5f, 0.2f, 0.5f};
-    ps_.speedUp = 1.2f;
-    ps_.acceleration = {0.35f, 0.2f, 0.0f};
+    if (fire) {
+      // Flames: a tight ring of emitters near the floor, fast buoyant rise, short lives.
+      ps_.emitterCenter = {0, 0.2f, 0.5f};
+      ps_.emitterRadius = -0.45f;
+      ps_.spread = {0.3f, 0.25f, 0.3f};
+      ps_.speedUp = 0.9f;
+      ps_.acceleration = {0.1f, 1.2f, 0.0f};
+    } else {
+      ps_.emitterCenter = {0, 0.3f, 0.5f};
+      // A negative radius mirrors the emitter ring: emitters (and so their particles, in
+      // buffer order) run from the front of the ring to its back, so unsorted OVER draws
+      // near smoke first and far smoke on top: the failure of the paper's Fig. 1.
+      ps_.emitterRadius = -1.8f;
+      ps_.spread = {0.5f, 0.2f, 0.5f};
+      ps_.speedUp = 1.2f;
+      ps_.acceleration = {0.35f, 0.2f, 0.0f};
+    }
     ps_.secondsPerUpdate = s.secondsPerUpdate;
     ps_.size = s.particleSize;
-    particles_ = ParticleSystem::Create(device, ps_, error);
-    if (!particles_) return fail("the particle system");
-    if (!vs("translucency_smoke.hlsl", "VSSmoke", &m.smokeVs, &code)) return fail("the smoke VS");
-    std::vector<uint32_t> gs;
-    if (!Compile("translucency_smoke.hlsl", "GSSmoke", "gs_5_0", &gs, error) ||
-        FAILED(device->CreateGeometryShader(gs.data(), gs.size() * 4, nullptr, m.smokeGs.GetAddressOf())) ||
-        !ps("translucency_smoke.hlsl", "PSSmokeOver", &m.smokePs[0]) ||
-        !ps("translucency_smoke.hlsl", "PSSmokeWboit", &m.smokePs[1]) ||
-        !ps("translucency_smoke.hlsl", "PSSmokeColored", &m.smokePs[2]))
-      return fail("the smoke shaders");
+    const ParticleRule& rule = s.rule;
+    if (rule.spawnPerFrame > 16 || rule.lifeRange == 0 || rule.emitters == 0)
+      return fail("the particle rule (spawnPerFrame <= 16, lifeRange > 0, emitters > 0)");
+    // The most particles the rule can keep alive: every emitter with a full set of
+    // children of the longest lifetime.
+    const uint64_t most =
+        uint64_t(rule.emitters) * (1 + uint64_t(rule.spawnPerFrame) * (rule.minLife + rule.lifeRange));
+    if (most * kParticleStride > (uint64_t(1) << 31)) return fail("the particle buffers (more than 2 GiB)");
+    m.capacity = uint32_t(most);
+
+    if (!load("smoke.fx", &m.smokeFx)) return fail("smoke.fx");
+    fx::Effect* e = m.smokeFx.Get();
+    m.updatePass = pass(e, "Update", "StreamOut");
+    m.passes[int(TranslucencyMethod::Alpha)] = {pass(e, fire ? "Fire" : "Alpha", "Transparency"), nullptr};
+    m.passes[int(TranslucencyMethod::Sorted)] = m.passes[int(TranslucencyMethod::Alpha)];
+    m.passes[int(TranslucencyMethod::Wboit)] = {pass(e, "Wboit", "Transparency"), pass(e, "Wboit", "Compose")};
+    const char* colored = s.literalTable4 ? "ColoredLiteral" : "Colored";
+    m.passes[int(TranslucencyMethod::Colored)] = {pass(e, colored, "Transparency"), pass(e, colored, "Compose")};
+    for (const MethodPasses& p : m.passes)
+      if (!p.transparency) return fail("the smoke passes");
+    if (!m.updatePass || !m.passes[1].compose || !m.passes[2].compose) return fail("the smoke passes");
     const INPUT_ELEMENT_DESC elements[] = {
         {"ORIGIN", 0, DXGI_FORMAT_R32G32B32_FLOAT, 0, 0, INPUT_PER_VERTEX_DATA, 0},
         {"VELOCITY", 0, DXGI_FORMAT_R32G32B32_FLOAT, 0, 12, INPUT_PER_VERTEX_DATA, 0},
         {"SEEDAGE", 0, DXGI_FORMAT_R32G32_UINT, 0, 24, INPUT_PER_VERTEX_DATA, 0},
         {"KINDLIFE", 0, DXGI_FORMAT_R32G32_UINT, 0, 32, INPUT_PER_VERTEX_DATA, 0}};
-    if (FAILED(device->CreateInputLayout(elements, 4, code.data(), code.size() * 4, m.smokeLayout.GetAddressOf())))
-      return fail("the smoke input layout");
-    const UINT bytes = particles_->capacity() * kParticleStride;
-    if (!buffer((sizeof(SmokeParams) + 15) / 16 * 16, USAGE_DYNAMIC, BIND_CONSTANT_BUFFER, CPU_ACCESS_WRITE, nullptr,
-                &m.smokeCb) ||
+    if (!layout(m.updatePass, elements, 4, &m.updateLayout) ||
+        !layout(m.passes[0].transparency, elements, 4, &m.smokeLayout))
+      return fail("the particle input layouts");
+    SmokeVars& v = m.smoke;
+    v.frame = e->GetVariableByName("Frame")->AsScalar();
+    v.spawnPerFrame = e->GetVariableByName("SpawnPerFrame")->AsScalar();
+    v.minLife = e->GetVariableByName("MinLife")->AsScalar();
+    v.lifeRange = e->GetVariableByName("LifeRange")->AsScalar();
+    v.spread = e->GetVariableByName("Spread")->AsVector();
+    v.speedUp = e->GetVariableByName("SpeedUp")->AsScalar();
+    v.viewProj = e->GetVariableByName("ViewProj")->AsMatrix();
+    v.eye = e->GetVariableByName("Eye")->AsVector();
+    v.seconds = e->GetVariableByName("Seconds")->AsScalar();
+    v.acceleration = e->GetVariableByName("Acceleration")->AsVector();
+    v.size = e->GetVariableByName("Size")->AsScalar();
+    v.lightDir = e->GetVariableByName("LightDir")->AsVector();
+    v.flame = e->GetVariableByName("Flame")->AsScalar();
+    v.puff = e->GetVariableByName("Puff")->AsShaderResource();
+    v.accum = e->GetVariableByName("Accum")->AsShaderResource();
+    v.revealage = e->GetVariableByName("Revealage")->AsShaderResource();
+    // Constant for the whole replay.
+    v.spawnPerFrame->SetInt(int(rule.spawnPerFrame));
+    v.minLife->SetInt(int(rule.minLife));
+    v.lifeRange->SetInt(int(rule.lifeRange));
+    SetVector(v.spread, ps_.spread);
+    v.speedUp->SetFloat(ps_.speedUp);
+    v.seconds->SetFloat(ps_.secondsPerUpdate);
+    SetVector(v.acceleration, ps_.acceleration);
+    v.size->SetFloat(ps_.size);
+    SetVector(v.lightDir, kLightDir);
+    v.flame->SetFloat(fire ? 1.0f : 0.0f);
+
+    // The init buffer: the emitters, spread on a circle, drawn with Draw(emitters, 0) by the
+    // first update (the paper's one-emitter init buffer is the case emitters == 1).
+    std::vector<ParticleData> emitters(rule.emitters);
+    for (uint32_t i = 0; i < rule.emitters; ++i) {
+      float angle = 6.2831853f * i / rule.emitters;
+      emitters[i] = {{ps_.emitterCenter.x + ps_.emitterRadius * std::cos(angle), ps_.emitterCenter.y,
+                      ps_.emitterCenter.z + ps_.emitterRadius * std::sin(angle)},
+                     {0, 0, 0},
+                     {i, 0},
+                     {0, 0}};
+    }
+    const UINT bytes = m.capacity * kParticleStride;
+    if (!buffer(UINT(emitters.size() * kParticleStride), USAGE_IMMUTABLE, BIND_VERTEX_BUFFER, 0, emitters.data(),
+                &m.emitters) ||
+        !buffer(bytes, USAGE_DEFAULT, BIND_VERTEX_BUFFER | BIND_STREAM_OUTPUT, 0, nullptr, &m.pingPong[0]) ||
+        !buffer(bytes, USAGE_DEFAULT, BIND_VERTEX_BUFFER | BIND_STREAM_OUTPUT, 0, nullptr, &m.pingPong[1]) ||
         !buffer(bytes, USAGE_STAGING, 0, CPU_ACCESS_READ, nullptr, &m.particleStaging) ||
         !buffer(bytes, USAGE_DEFAULT, BIND_VERTEX_BUFFER, 0, nullptr, &m.sortedParticles))
-      return fail("the smoke buffers");
+      return fail("the particle buffers");
     constexpr UINT kPuff = 64;
     std::vector<uint8_t> texels = PuffTexels(kPuff, s.seed);
     TEXTURE2D_DESC d{kPuff, kPuff, 1, 1, DXGI_FORMAT_R8G8B8A8_UNORM, {1, 0}, USAGE_IMMUTABLE, BIND_SHADER_RESOURCE,
@@ -450,10 +452,27 @@ bool Translucency::Initialize(Device* device, DeviceContext* context, const Tran
     if (FAILED(device->CreateTexture2D(&d, &init, puff.GetAddressOf())) ||
         FAILED(device->CreateShaderResourceView(puff.Get(), nullptr, m.puff.GetAddressOf())))
       return fail("the puff texture");
-  } else {
-    if (!vs("shards.hlsl", "VSShard", &m.shardVs, &code) || !ps("shards.hlsl", "PSShardOver", &m.shardPs[0]) ||
-        !ps("shards.hlsl", "PSShardWboit", &m.shardPs[1]) || !ps("shards.hlsl", "PSShardColored", &m.shardPs[2]))
-      return fail("the shard shaders");
+    v.puff->SetResource(m.puff.Get());
+    v.accum->SetResource(m.accumSrv.Get());
+    v.revealage->SetResource(m.revealageSrv.Get());
+  }
+  if (s.demo == TranslucencyDemo::Shards || s.extraShards > 0) {
+    if (!load("shards.fx", &m.shardsFx)) return fail("shards.fx");
+    fx::Effect* e = m.shardsFx.Get();
+    if (s.demo == TranslucencyDemo::Shards) {
+      m.passes[int(TranslucencyMethod::Alpha)] = {pass(e, "Alpha", "Transparency"), nullptr};
+      m.passes[int(TranslucencyMethod::Sorted)] = m.passes[int(TranslucencyMethod::Alpha)];
+      m.passes[int(TranslucencyMethod::Wboit)] = {pass(e, "Wboit", "Transparency"), pass(e, "Wboit", "Compose")};
+      const char* colored = s.literalTable4 ? "ColoredLiteral" : "Colored";
+      m.passes[int(TranslucencyMethod::Colored)] = {pass(e, colored, "Transparency"), pass(e, colored, "Compose")};
+      for (const MethodPasses& p : m.passes)
+        if (!p.transparency) return fail("the shard passes");
+      if (!m.passes[1].compose || !m.passes[2].compose) return fail("the shard passes");
+    }
+    m.shardPasses[int(TranslucencyMethod::Alpha)] = pass(e, "Alpha", "Transparency");
+    m.shardPasses[int(TranslucencyMethod::Sorted)] = m.shardPasses[int(TranslucencyMethod::Alpha)];
+    m.shardPasses[int(TranslucencyMethod::Wboit)] = pass(e, "Wboit", "Transparency");
+    m.shardPasses[int(TranslucencyMethod::Colored)] = pass(e, "Colored", "Transparency");
     const INPUT_ELEMENT_DESC elements[] = {
         {"POSITION", 0, DXGI_FORMAT_R32G32B32_FLOAT, 0, 0, INPUT_PER_VERTEX_DATA, 0},
         {"NORMAL", 0, DXGI_FORMAT_R32G32B32_FLOAT, 0, 12, INPUT_PER_VERTEX_DATA, 0},
@@ -462,31 +481,77 @@ bool Translucency::Initialize(Device* device, DeviceContext* context, const Tran
         {"WORLD", 2, DXGI_FORMAT_R32G32B32A32_FLOAT, 1, 32, INPUT_PER_INSTANCE_DATA, 1},
         {"WORLD", 3, DXGI_FORMAT_R32G32B32A32_FLOAT, 1, 48, INPUT_PER_INSTANCE_DATA, 1},
         {"TINT", 0, DXGI_FORMAT_R32G32B32A32_FLOAT, 1, 64, INPUT_PER_INSTANCE_DATA, 1}};
-    if (FAILED(device->CreateInputLayout(elements, 7, code.data(), code.size() * 4, m.shardLayout.GetAddressOf())))
-      return fail("the shard input layout");
+    if (!layout(m.shardPasses[0], elements, 7, &m.shardLayout)) return fail("the shard input layout");
+    ShardVars& v = m.shard;
+    v.viewProj = e->GetVariableByName("ViewProj")->AsMatrix();
+    v.eye = e->GetVariableByName("Eye")->AsVector();
+    v.lightDir = e->GetVariableByName("LightDir")->AsVector();
+    v.surfaceTint = e->GetVariableByName("SurfaceTint")->AsScalar();
+    v.accum = e->GetVariableByName("Accum")->AsShaderResource();
+    v.revealage = e->GetVariableByName("Revealage")->AsShaderResource();
+    SetVector(v.lightDir, kLightDir);
+    v.surfaceTint->SetFloat(s.shardSurfaceTint);
+    v.accum->SetResource(m.accumSrv.Get());
+    v.revealage->SetResource(m.revealageSrv.Get());
     std::vector<ShardVertex> mesh = ShardMesh(s.seed);
     std::vector<uint16_t> indices(mesh.size());
     std::iota(indices.begin(), indices.end(), uint16_t(0));
     m.shardIndices = UINT(indices.size());
-    m.instanceData = ShardInstances(s);
+    TranslucencySettings instanceSettings = s;
+    if (s.demo != TranslucencyDemo::Shards) instanceSettings.shardCount = s.extraShards;
+    m.instanceData = ShardInstances(instanceSettings);
     const UINT instanceBytes = UINT(std::max<size_t>(1, m.instanceData.size()) * sizeof(ShardInstance));
     if (!buffer(UINT(mesh.size() * sizeof(ShardVertex)), USAGE_IMMUTABLE, BIND_VERTEX_BUFFER, 0, mesh.data(),
                 &m.shardVb) ||
         !buffer(UINT(indices.size() * 2), USAGE_IMMUTABLE, BIND_INDEX_BUFFER, 0, indices.data(), &m.shardIb) ||
         !buffer(instanceBytes, USAGE_DEFAULT, BIND_VERTEX_BUFFER, 0,
                 m.instanceData.empty() ? nullptr : m.instanceData.data(), &m.instances) ||
-        !buffer(instanceBytes, USAGE_DEFAULT, BIND_VERTEX_BUFFER, 0, nullptr, &m.sortedInstances) ||
-        !buffer(sizeof(ShardParams), USAGE_DYNAMIC, BIND_CONSTANT_BUFFER, CPU_ACCESS_WRITE, nullptr, &m.shardCb))
+        !buffer(instanceBytes, USAGE_DEFAULT, BIND_VERTEX_BUFFER, 0, nullptr, &m.sortedInstances))
       return fail("the shard buffers");
   }
   return true;
 }
 
+
+const char* ToString(TranslucencyDemo demo) {
+  switch (demo) {
+    case TranslucencyDemo::Smoke: return "smoke";
+    case TranslucencyDemo::Fire: return "fire";
+    case TranslucencyDemo::Shards: return "shards";
+  }
+  return "?";
+}
+const char* ToString(TranslucencyMethod method) {
+  switch (method) {
+    case TranslucencyMethod::Alpha: return "alpha";
+    case TranslucencyMethod::Wboit: return "wboit";
+    case TranslucencyMethod::Colored: return "colored";
+    case TranslucencyMethod::Sorted: return "sorted";
+  }
+  return "?";
+}
+bool ParseDemo(const std::string& text, TranslucencyDemo* demo) {
+  if (text == "smoke") *demo = TranslucencyDemo::Smoke;
+  else if (text == "fire") *demo = TranslucencyDemo::Fire;
+  else if (text == "shards") *demo = TranslucencyDemo::Shards;
+  else return false;
+  return true;
+}
+bool ParseMethod(const std::string& text, TranslucencyMethod* method) {
+  for (auto m : {TranslucencyMethod::Alpha, TranslucencyMethod::Wboit, TranslucencyMethod::Colored,
+                 TranslucencyMethod::Sorted})
+    if (text == ToString(m)) {
+      *method = m;
+      return true;
+    }
+  return false;
+}
+
 Camera Translucency::CameraForFrame(uint32_t n) const {
-  const bool smoke = settings_.demo == TranslucencyDemo::Smoke;
-  const glm::vec3 target = smoke ? glm::vec3(0.3f, 1.5f, 0.5f) : glm::vec3(0, 1.9f, 0);
+  const bool shards = settings_.demo == TranslucencyDemo::Shards;
+  const glm::vec3 target = shards ? glm::vec3(0, 1.9f, 0) : glm::vec3(0.3f, 1.5f, 0.5f);
   const float angle = 0.3f * std::sin(n * 0.01f);
-  const float radius = smoke ? 7.0f : 7.5f;
+  const float radius = shards ? 7.5f : 7.0f;
   Camera c;
   c.eye = target + glm::vec3(radius * std::sin(angle), 1.2f, -radius * std::cos(angle));
   glm::mat4 view = glm::lookAtLH(c.eye, target, glm::vec3(0, 1, 0));
@@ -523,6 +588,7 @@ void Translucency::RenderFrame(TranslucencyMethod method) {
   ++frame_;
 }
 
+// Opaque objects: scene.fx Opaque/Scene into the frame and the depth buffer.
 void Translucency::OpaquePass() {
   Impl& m = *impl_;
   DeviceContext* ctx = m.context;
@@ -533,39 +599,56 @@ void Translucency::OpaquePass() {
   ctx->OMSetRenderTargets(1, &rtv, m.dsv.Get());
   VIEWPORT viewport{0, 0, float(settings_.width), float(settings_.height), 0, 1};
   ctx->RSSetViewports(1, &viewport);
-  ctx->RSSetState(m.noCull.Get());
-  ctx->OMSetBlendState(nullptr, nullptr, 0xffffffff);
-  ctx->OMSetDepthStencilState(m.opaqueDepth.Get(), 0);
-  Upload(ctx, m.opaqueCb.Get(), OpaqueParams{camera_.viewProj, kLightDir, 0.45f});
+  SetMatrix(m.scene.viewProj, camera_.viewProj);
+  SetVector(m.scene.lightDir, kLightDir);
+  m.scene.ambient->SetFloat(0.45f);
   UINT stride = sizeof(OpaqueVertex), offset = 0;
   Buffer* vb = m.opaqueVb.Get();
   ctx->IASetInputLayout(m.opaqueLayout.Get());
   ctx->IASetVertexBuffers(0, 1, &vb, &stride, &offset);
   ctx->IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLELIST);
-  ctx->VSSetShader(m.opaqueVs.Get(), nullptr, 0);
-  ctx->GSSetShader(nullptr, nullptr, 0);
-  ctx->PSSetShader(m.opaquePs.Get(), nullptr, 0);
-  Buffer* cb = m.opaqueCb.Get();
-  ctx->VSSetConstantBuffers(0, 1, &cb);
-  ctx->PSSetConstantBuffers(0, 1, &cb);
+  m.opaquePass->Apply(0, ctx);
   ctx->Draw(m.opaqueVertices, 0);
 }
 
+// The particle update pass: smoke.fx Update/StreamOut, the current buffer in, the
+// other ping-pong buffer out through stream output; the first update draws the
+// init buffer with Draw(emitters, 0), later ones what the last update wrote (DrawAuto).
 void Translucency::ParticleUpdatePass() {
-  if (!particles_) return;
   Impl& m = *impl_;
+  if (!m.particlesOn()) return;
+  DeviceContext* ctx = m.context;
   const bool count = m.countThisFrame || settings_.countParticles;
-  if (count) m.context->Begin(m.soStats.Get());
-  particles_->Update(m.context);
+  if (count) ctx->Begin(m.soStats.Get());
+  ++m.updates;
+  m.smoke.frame->SetInt(int(m.updates));
+  const bool first = m.updates == 1;
+  const uint32_t target = first ? 0 : 1 - m.current;
+  Buffer* input = first ? m.emitters.Get() : m.pingPong[m.current].Get();
+  UINT stride = kParticleStride, offset = 0;
+  ctx->IASetInputLayout(m.updateLayout.Get());
+  ctx->IASetVertexBuffers(0, 1, &input, &stride, &offset);
+  ctx->IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_POINTLIST);
+  Buffer* out = m.pingPong[target].Get();
+  ctx->SOSetTargets(1, &out, &offset);
+  m.updatePass->Apply(0, ctx);
+  if (first)
+    ctx->Draw(settings_.rule.emitters, 0);
+  else
+    ctx->DrawAuto();  // the CPU does not know how many particles survived
+  ctx->SOSetTargets(0, nullptr, nullptr);
+  m.current = target;
   if (count) {
-    m.context->End(m.soStats.Get());
+    ctx->End(m.soStats.Get());
     QUERY_DATA_SO_STATISTICS data{};
-    while (m.context->GetData(m.soStats.Get(), &data, sizeof data, 0) == S_FALSE) {
+    while (ctx->GetData(m.soStats.Get(), &data, sizeof data, 0) == S_FALSE) {
     }
     particleCount_ = data.NumPrimitivesWritten;
   }
 }
 
+// The 3D transparency pass of the method: its targets (cleared as Tables 1/3 say),
+// then the particles (DrawAuto) and/or the shards (DrawIndexedInstanced).
 void Translucency::TransparencyPass(TranslucencyMethod method) {
   Impl& m = *impl_;
   DeviceContext* ctx = m.context;
@@ -574,7 +657,6 @@ void Translucency::TransparencyPass(TranslucencyMethod method) {
     case TranslucencyMethod::Sorted: {
       RenderTargetView* rtv = m.frameRtv.Get();
       ctx->OMSetRenderTargets(1, &rtv, m.dsv.Get());
-      ctx->OMSetBlendState(m.over.Get(), nullptr, 0xffffffff);
       break;
     }
     case TranslucencyMethod::Wboit:
@@ -583,27 +665,21 @@ void Translucency::TransparencyPass(TranslucencyMethod method) {
       ctx->ClearRenderTargetView(m.accumRtv.Get(), zero);
       ctx->ClearRenderTargetView(m.revealageRtv.Get(), one);
       RenderTargetView* rtvs[3] = {m.accumRtv.Get(), m.revealageRtv.Get(), m.frameRtv.Get()};
-      const bool colored = method == TranslucencyMethod::Colored;
-      ctx->OMSetRenderTargets(colored ? 3 : 2, rtvs, m.dsv.Get());
-      ctx->OMSetBlendState(colored ? m.coloredAccum.Get() : m.wboitAccum.Get(), nullptr, 0xffffffff);
+      ctx->OMSetRenderTargets(method == TranslucencyMethod::Colored ? 3 : 2, rtvs, m.dsv.Get());
       break;
     }
   }
-  ctx->OMSetDepthStencilState(m.testNoWrite.Get(), 0);  // test depth, write none
-  ctx->RSSetState(m.noCull.Get());
-  if (settings_.demo == TranslucencyDemo::Smoke)
-    DrawSmoke(method);
-  else
-    DrawShards(method);
+  if (m.particlesOn()) DrawSmoke(method);
+  if (m.shardLayout) DrawShards(method);
 }
 
 void Translucency::DrawSmoke(TranslucencyMethod method) {
   Impl& m = *impl_;
   DeviceContext* ctx = m.context;
-  const ParticleSettings& ps = particles_->settings();
-  Upload(ctx, m.smokeCb.Get(),
-         SmokeParams{camera_.viewProj, camera_.eye, ps.secondsPerUpdate, ps.acceleration, ps.size, kLightDir, 0});
-  Buffer* input = particles_->current();
+  const ParticleSettings& ps = m.particleSettings;
+  SetMatrix(m.smoke.viewProj, camera_.viewProj);
+  SetVector(m.smoke.eye, camera_.eye);
+  Buffer* input = m.pingPong[m.current].Get();
   UINT count = 0;
   if (method == TranslucencyMethod::Sorted) {
     // The reference: read the particles back, sort them back to front by view depth, draw in that order.
@@ -613,7 +689,7 @@ void Translucency::DrawSmoke(TranslucencyMethod method) {
     std::vector<ParticleData> sorted;
     if (SUCCEEDED(ctx->Map(m.particleStaging.Get(), 0, MAP_READ, 0, &mapped))) {
       const auto* data = static_cast<const ParticleData*>(mapped.pData);
-      const size_t n = std::min<uint64_t>(live, particles_->capacity());
+      const size_t n = std::min<uint64_t>(live, m.capacity);
       sorted.assign(data, data + n);
       ctx->Unmap(m.particleStaging.Get(), 0);
     }
@@ -630,7 +706,7 @@ void Translucency::DrawSmoke(TranslucencyMethod method) {
     std::vector<uint32_t> order(sorted.size());
     std::iota(order.begin(), order.end(), 0u);
     std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return depth[a] > depth[b]; });
-    std::vector<ParticleData> out(particles_->capacity());
+    std::vector<ParticleData> out(m.capacity);
     for (size_t i = 0; i < order.size(); ++i) out[i] = sorted[order[i]];
     ctx->UpdateSubresource(m.sortedParticles.Get(), 0, nullptr, out.data(), 0, 0);
     input = m.sortedParticles.Get();
@@ -640,33 +716,19 @@ void Translucency::DrawSmoke(TranslucencyMethod method) {
   ctx->IASetInputLayout(m.smokeLayout.Get());
   ctx->IASetVertexBuffers(0, 1, &input, &stride, &offset);
   ctx->IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_POINTLIST);
-  ctx->VSSetShader(m.smokeVs.Get(), nullptr, 0);
-  ctx->GSSetShader(m.smokeGs.Get(), nullptr, 0);
-  const int psIndex = method == TranslucencyMethod::Wboit ? 1 : method == TranslucencyMethod::Colored ? 2 : 0;
-  ctx->PSSetShader(m.smokePs[psIndex].Get(), nullptr, 0);
-  Buffer* cb = m.smokeCb.Get();
-  ctx->VSSetConstantBuffers(1, 1, &cb);
-  ctx->GSSetConstantBuffers(1, 1, &cb);
-  ctx->PSSetConstantBuffers(1, 1, &cb);
-  ShaderResourceView* srv = m.puff.Get();
-  ctx->PSSetShaderResources(0, 1, &srv);
-  SamplerState* sampler = m.linear.Get();
-  ctx->PSSetSamplers(0, 1, &sampler);
+  m.passes[int(method)].transparency->Apply(0, ctx);
   if (method == TranslucencyMethod::Sorted)
     ctx->Draw(count, 0);
   else
     ctx->DrawAuto();  // the CPU does not know how many particles survived
-  ctx->GSSetShader(nullptr, nullptr, 0);
-  ShaderResourceView* none = nullptr;
-  ctx->PSSetShaderResources(0, 1, &none);
 }
 
 void Translucency::DrawShards(TranslucencyMethod method) {
   Impl& m = *impl_;
   DeviceContext* ctx = m.context;
   if (m.instanceData.empty()) return;
-  Upload(ctx, m.shardCb.Get(),
-         ShardParams{camera_.viewProj, camera_.eye, settings_.shardSurfaceTint, kLightDir, 0});
+  SetMatrix(m.shard.viewProj, camera_.viewProj);
+  SetVector(m.shard.eye, camera_.eye);
   Buffer* instances = m.instances.Get();
   if (method == TranslucencyMethod::Sorted) {
     // The reference: instances reordered back to front by the view depth of their centre.
@@ -689,35 +751,22 @@ void Translucency::DrawShards(TranslucencyMethod method) {
   ctx->IASetVertexBuffers(0, 2, vbs, strides, offsets);
   ctx->IASetIndexBuffer(m.shardIb.Get(), DXGI_FORMAT_R16_UINT, 0);
   ctx->IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLELIST);
-  ctx->VSSetShader(m.shardVs.Get(), nullptr, 0);
-  ctx->GSSetShader(nullptr, nullptr, 0);
-  const int psIndex = method == TranslucencyMethod::Wboit ? 1 : method == TranslucencyMethod::Colored ? 2 : 0;
-  ctx->PSSetShader(m.shardPs[psIndex].Get(), nullptr, 0);
-  Buffer* cb = m.shardCb.Get();
-  ctx->VSSetConstantBuffers(1, 1, &cb);
-  ctx->PSSetConstantBuffers(1, 1, &cb);
+  m.shardPasses[int(method)]->Apply(0, ctx);
   ctx->DrawIndexedInstanced(m.shardIndices, UINT(m.instanceData.size()), 0, 0, 0);
 }
 
+// The 2D composing pass (WBOIT: Table 2; colored: Table 4): a full-screen triangle
+// over the frame reading accum and revealage (the effect's Accum / Revealage).
 void Translucency::ComposePass(TranslucencyMethod method) {
   if (method != TranslucencyMethod::Wboit && method != TranslucencyMethod::Colored) return;
   Impl& m = *impl_;
   DeviceContext* ctx = m.context;
   RenderTargetView* rtv = m.frameRtv.Get();
-  ctx->OMSetRenderTargets(1, &rtv, nullptr);
-  ctx->OMSetBlendState(method == TranslucencyMethod::Wboit ? m.wboitCompose.Get() : m.coloredCompose.Get(), nullptr,
-                       0xffffffff);
-  ctx->OMSetDepthStencilState(m.noDepth.Get(), 0);
+  ctx->OMSetRenderTargets(1, &rtv, nullptr);  // unbinds accum and revealage from output
   ctx->IASetInputLayout(nullptr);
   ctx->IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLELIST);
-  ctx->VSSetShader(m.fullscreenVs.Get(), nullptr, 0);
-  ctx->GSSetShader(nullptr, nullptr, 0);
-  ctx->PSSetShader(m.composePs.Get(), nullptr, 0);
-  ShaderResourceView* srvs[2] = {m.accumSrv.Get(), m.revealageSrv.Get()};
-  ctx->PSSetShaderResources(0, 2, srvs);
+  m.passes[int(method)].compose->Apply(0, ctx);
   ctx->Draw(3, 0);
-  ShaderResourceView* none[2] = {nullptr, nullptr};
-  ctx->PSSetShaderResources(0, 2, none);
 }
 
 std::vector<uint8_t> Translucency::ReadFrame() {

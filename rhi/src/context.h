@@ -130,6 +130,10 @@ class ContextImpl final : public DeviceContext {
 
   void ClearState() override;
   void Flush() override;
+  // Debug-utils labels (context_annotations.cpp).
+  void BeginEvent(const char* name) override;
+  void EndEvent() override;
+  void SetMarker(const char* name) override;
   // A query destroyed while active leaves the active sets.
   void ForgetQuery(QueryImpl& query);
 

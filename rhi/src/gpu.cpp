@@ -132,6 +132,7 @@ HRESULT Gpu::CreateInstance(bool validation) {
     auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
         vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
     if (create) create(instance_, &messenger, nullptr, &messenger_);
+    LoadDebugLabelEntryPoints();
   }
   return S_OK;
 }

@@ -83,6 +83,11 @@ class Gpu {
   PFN_vkCmdBeginQueryIndexedEXT vkCmdBeginQueryIndexedEXT = nullptr;
   PFN_vkCmdEndQueryIndexedEXT vkCmdEndQueryIndexedEXT = nullptr;
   PFN_vkCmdDrawIndirectByteCountEXT vkCmdDrawIndirectByteCountEXT = nullptr;
+  // VK_EXT_debug_utils command labels: set only when the instance enabled the
+  // extension (with the validation layer), else null.
+  PFN_vkCmdBeginDebugUtilsLabelEXT vkCmdBeginDebugUtilsLabelEXT = nullptr;
+  PFN_vkCmdEndDebugUtilsLabelEXT vkCmdEndDebugUtilsLabelEXT = nullptr;
+  PFN_vkCmdInsertDebugUtilsLabelEXT vkCmdInsertDebugUtilsLabelEXT = nullptr;
 
  private:
   struct Submission {
@@ -98,6 +103,7 @@ class Gpu {
   HRESULT PickPhysicalDevice(const char* wantedName);
   HRESULT CreateLogicalDevice();
   void LoadExtensionEntryPoints();
+  void LoadDebugLabelEntryPoints();  // context_annotations.cpp
   void RetireCompleted();
   std::unique_ptr<Submission> AcquireSubmission();
 

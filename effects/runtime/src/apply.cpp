@@ -124,6 +124,7 @@ void EffectImpl::Upload(rhi::DeviceContext* context, const ShaderState& shader) 
 
 HRESULT PassImpl::Apply(UINT Flags, rhi::DeviceContext* pContext) {
   if (!effect_ || !pContext || Flags != 0) return rhi::E_INVALIDARG;
+  pContext->SetMarker(marker_.c_str());  // ID3DUserDefinedAnnotation: "technique/pass"
   for (const PassAction& action : actions_) RunAction(*effect_, pContext, action);
   return rhi::S_OK;
 }

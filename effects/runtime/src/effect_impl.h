@@ -89,6 +89,7 @@ class PassImpl final : public EffectPass {
   EffectImpl* effect_ = nullptr;
   const Pass* ast_ = nullptr;
   std::vector<PassAction> actions_;
+  std::string marker_;  // "technique/pass": Apply's SetMarker
 };
 
 class TechniqueImpl final : public EffectTechnique {

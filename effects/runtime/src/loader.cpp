@@ -260,6 +260,7 @@ class Loader {
         PassImpl& pass = technique.passes_[p];
         pass.effect_ = &e_;
         pass.ast_ = &technique.ast_->passes[p];
+        pass.marker_ = technique.ast_->name + "/" + pass.ast_->name;
         for (const PassAssignment& a : pass.ast_->assignments) pass.actions_.push_back(Resolve(a));
       }
     }

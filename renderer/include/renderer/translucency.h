@@ -1,16 +1,20 @@
 // The translucency demos of document 000 (SPEC.md), replayed deterministically.
 //
-// Frame order of the paper, one function per pass so that each maps 1:1 onto an
-// effect pass later:
-//   OpaquePass        coloured stripes, floor and cubes into the frame + depth
-//   ParticleUpdatePass the existing ParticleSystem::Update (Draw(1,0)-style first
-//                      frame, DrawAuto after); smoke demo only
-//   TransparencyPass   the 3D transparency pass of the chosen method
-//   ComposePass        the 2D composing pass (WBOIT: Table 2; colored: Table 4)
-// Methods: Alpha (plain OVER in buffer order), Wboit (Tables 1 + 2), Colored
-// (Tables 3 + corrected 4, or the literal Table 4 on request), Sorted (the
-// reference: OVER back to front, sorted on the CPU: particles read back, shard
-// instances reordered).
+// Frame order of the paper, one function per pass, each driven only through
+// effect techniques and passes (shaders_hlsl/*.fx: shaders and the blend,
+// depth-stencil and rasterizer state blocks live there; the C++ sets effect
+// variables, binds targets and buffers, applies passes and draws):
+//   OpaquePass         scene.fx Opaque/Scene: stripes, floor and cubes into frame + depth
+//   ParticleUpdatePass smoke.fx Update/StreamOut: stream output into the other
+//                      ping-pong buffer, Draw(emitters, 0) on the first frame
+//                      (the paper's Draw(1,0) with one emitter), DrawAuto after
+//   TransparencyPass   <method>/Transparency of smoke.fx (DrawAuto of the particles)
+//                      and/or shards.fx (DrawIndexedInstanced of the shards)
+//   ComposePass        <method>/Compose (WBOIT: Table 2; colored: Table 4)
+// Methods: Alpha (plain OVER in buffer order; the fire demo: additive), Wboit
+// (Tables 1 + 2), Colored (Tables 3 + corrected 4, or the literal Table 4 on
+// request), Sorted (the reference: OVER back to front, sorted on the CPU:
+// particles read back, shard instances reordered; fire: additive, sorted).
 // Everything is seeded and the time step is fixed: frame N is a pure function of
 // the settings and N.
 #pragma once
@@ -28,7 +32,7 @@
 
 namespace renderer {
 
-enum class TranslucencyDemo { Smoke, Shards };
+enum class TranslucencyDemo { Smoke, Shards, Fire };
 enum class TranslucencyMethod { Alpha, Wboit, Colored, Sorted };
 
 const char* ToString(TranslucencyDemo demo);
@@ -46,6 +50,7 @@ struct TranslucencySettings {
   float secondsPerUpdate = 1.0f / 40.0f;
   // Shards.
   uint32_t shardCount = 3000;
+  uint32_t extraShards = 0;       // smoke / fire: also draw this many shards (the heavy bench scene)
   float shardSurfaceTint = 0.5f;  // 0: neutral surface colour (tint only in transmission)
   bool shardsAllRed = false;      // every shard transmits (1, 0.15, 0.15)
   // Background.
@@ -84,7 +89,6 @@ class Translucency {
   // valid with settings.countParticles or the sorted method.
   uint64_t particleCount() const { return particleCount_; }
   const TranslucencySettings& settings() const { return settings_; }
-  ParticleSystem* particles() const { return particles_.get(); }
 
   // The fixed camera of frame n.
   Camera CameraForFrame(uint32_t n) const;
@@ -106,7 +110,6 @@ class Translucency {
   uint64_t particleCount_ = 0;
   Camera camera_;
   std::optional<Camera> cameraOverride_;
-  std::unique_ptr<ParticleSystem> particles_;
   std::unique_ptr<Impl> impl_;
 };
 

@@ -266,6 +266,13 @@ class DeviceContext : public DeviceChild {
 
   virtual void ClearState() = 0;
   virtual void Flush() = 0;
+
+  // ID3DUserDefinedAnnotation: named regions and markers for debuggers and traces
+  // (rhi/trace.h). The Vulkan context emits debug-utils labels when
+  // VK_EXT_debug_utils is enabled (the validation layer is on), else nothing.
+  virtual void BeginEvent(const char* /*name*/) {}
+  virtual void EndEvent() {}
+  virtual void SetMarker(const char* /*name*/) {}
 };
 
 // ---------------------------------------------------------------------------

@@ -295,7 +295,10 @@ class EffectPass {
   // rasterizer states with factor, mask and ref), uploads changed constant
   // buffers and binds, for each stage it sets a shader on, the cbuffers, SRVs,
   // samplers (and UAVs for compute) the shader uses. What it does not assign
-  // stays as it was. Flags must be 0.
+  // stays as it was. Flags must be 0. It first calls
+  // pContext->SetMarker("technique/pass") (ID3DUserDefinedAnnotation), which a
+  // tracing context (rhi/trace.h) records and the Vulkan context turns into a
+  // debug-utils label when the validation layer is on.
   virtual HRESULT Apply(UINT Flags, rhi::DeviceContext* pContext) = 0;
 
  protected:

@@ -1,0 +1,197 @@
+// The particle effect of document 000 (SPEC.md): the GPU particle system's two
+// passes, named passes of one effect.
+//   technique Update  pass StreamOut: pass-through VS, a GS that ages, spawns and
+//                     kills particles and streams the survivors out
+//                     (ConstructGSWithSO), NULL pixel shader, depth disabled.
+//   technique Alpha   pass Transparency: the point-to-billboard GS (camera-facing
+//                     basis z = (E-C)/|E-C|, x = (j x z)/|j x z|, y = z x x) and the
+//                     textured, normal-map-lit smoke PS with plain OVER blending
+//                     (also the sorted reference, drawn from a CPU-sorted copy).
+//   technique Wboit   pass Transparency (Table 1) + pass Compose (Table 2).
+//   technique Colored pass Transparency (Table 3) + pass Compose (Table 4 corrected);
+//   technique ColoredLiteral: the same with Table 4 as printed.
+//   technique Fire    pass Transparency: flames with additive blending.
+// Flame = 1 turns the smoke colour ramp into a flame ramp (the `fire` demo).
+// glslang 12 crashes on a source holding a PointStream GS and a TriangleStream GS:
+// the effect runtime blanks the other stream-type GS before compiling each entry.
+#include "particle.hlsli"
+#include "particle_rule.hlsli"
+#include "translucency_states.fxh"
+
+cbuffer UpdateParams : register(b0) {
+  uint Frame;          // index of this update, from 1
+  uint SpawnPerFrame;  // children per emitter per update
+  uint MinLife;
+  uint LifeRange;
+  float3 Spread;       // random initial velocity range
+  float SpeedUp;       // initial upward speed
+};
+
+cbuffer SmokeParams : register(b1) {
+  float4x4 ViewProj;
+  float3 Eye;
+  float Seconds;
+  float3 Acceleration;
+  float Size;
+  float3 LightDir;  // towards the light
+  float Flame;      // 0: smoke, 1: flames
+};
+
+Texture2D Puff;  // rgb: normal * 0.5 + 0.5, a: density
+SamplerState Linear { Filter = MIN_MAG_MIP_LINEAR; AddressU = Clamp; AddressV = Clamp; AddressW = Clamp; };
+
+// ---------------------------------------------------------------------------
+// Update pass
+
+Particle VSPassThrough(Particle p) { return p; }
+
+float3 RandomDirection(uint seed) {
+  uint3 bits = uint3(ParticleHash(seed + 1u), ParticleHash(seed + 2u), ParticleHash(seed + 3u));
+  return float3(bits & 0xFFFFu) / 65535.0 * 2.0 - 1.0;
+}
+
+[maxvertexcount(17)]
+void GSUpdate(point Particle input[1], inout PointStream<Particle> stream) {
+  Particle p = input[0];
+  p.seedAge.y += 1;
+  if (p.kindLife.x == 0) {
+    stream.Append(p);  // emitters live forever
+    for (uint slot = 0; slot < SpawnPerFrame; ++slot) {
+      Particle child;
+      uint seed = ChildSeed(p.seedAge.x, Frame, slot, SpawnPerFrame);
+      child.origin = p.origin;
+      child.velocity = RandomDirection(seed) * Spread + float3(0, SpeedUp, 0);
+      child.seedAge = uint2(seed, 0);
+      child.kindLife = uint2(1, ChildLifetime(seed, MinLife, LifeRange));
+      stream.Append(child);
+    }
+  } else if (p.seedAge.y < p.kindLife.y) {
+    stream.Append(p);
+  }
+}
+
+// ---------------------------------------------------------------------------
+// Draw pass
+
+struct Center {
+  float3 center : CENTER;
+  float age : AGE;
+  uint kind : KIND;
+};
+
+struct Billboard {
+  float4 position : SV_Position;
+  float2 uv : TEXCOORD0;
+  float age : AGE;
+  float3 bx : BASISX;
+  float3 by : BASISY;
+  float3 bz : BASISZ;
+};
+
+Center VSSmoke(Particle p) {
+  Center c;
+  float t = p.seedAge.y * Seconds;
+  c.center = 0.5 * t * t * Acceleration + t * p.velocity + p.origin;  // p(t) = t^2 a / 2 + t v0 + p0
+  c.age = p.kindLife.y > 0 ? saturate(float(p.seedAge.y) / float(p.kindLife.y)) : 0;
+  c.kind = p.kindLife.x;
+  return c;
+}
+
+[maxvertexcount(4)]
+void GSBillboard(point Center input[1], inout TriangleStream<Billboard> stream) {
+  if (input[0].kind == 0) return;  // emitters are invisible
+  float3 z = normalize(Eye - input[0].center);
+  float3 x = normalize(cross(float3(0, 1, 0), z));
+  float3 y = cross(z, x);
+  float size = Size * (0.5 + input[0].age);
+  float2 corners[4] = {float2(-1, -1), float2(-1, 1), float2(1, -1), float2(1, 1)};
+  for (uint i = 0; i < 4; ++i) {
+    Billboard b;
+    float3 world = input[0].center + (corners[i].x * x + corners[i].y * y) * size;
+    b.position = mul(ViewProj, float4(world, 1));
+    b.uv = float2(corners[i].x, -corners[i].y) * 0.5 + 0.5;
+    b.age = input[0].age;
+    b.bx = x;
+    b.by = y;
+    b.bz = z;
+    stream.Append(b);
+  }
+}
+
+// Colour, alpha and transmission of a fragment. Smoke: hot and bright when young,
+// dark and thin when old, lit through the normal map. Flames: white-yellow core
+// fading through orange to dark red, self-lit (the normal map only modulates).
+void Shade(Billboard b, out float3 c, out float a, out float3 t) {
+  float4 puff = Puff.Sample(Linear, b.uv);
+  float3 n = puff.rgb * 2.0 - 1.0;
+  float3 nw = normalize(b.bx * n.x + b.by * n.y + b.bz * n.z);
+  float light = saturate(dot(nw, normalize(LightDir))) * 0.75 + 0.3;
+  if (Flame > 0.5) {
+    float3 core = float3(1.0, 0.9, 0.55);
+    float3 mid = float3(1.0, 0.45, 0.08);
+    float3 tip = float3(0.35, 0.05, 0.02);
+    float3 ramp = b.age < 0.3 ? lerp(core, mid, b.age / 0.3) : lerp(mid, tip, (b.age - 0.3) / 0.7);
+    c = ramp * (0.8 + 0.2 * light);
+    a = puff.a * saturate(1.0 - b.age) * 0.18;
+    t = ramp;
+  } else {
+    float3 young = float3(1.0, 0.62, 0.22);
+    float3 mid = float3(0.72, 0.72, 0.74);
+    float3 old = float3(0.16, 0.17, 0.22);
+    float3 ramp = b.age < 0.35 ? lerp(young, mid, b.age / 0.35) : lerp(mid, old, (b.age - 0.35) / 0.65);
+    c = ramp * light;
+    a = puff.a * saturate(1.0 - b.age * 0.7) * 0.8;
+    t = ramp;
+  }
+}
+
+#include "translucency_outputs.hlsl"
+
+float4 PSSmokeOver(Billboard b) : SV_Target {
+  float3 c, t;
+  float a;
+  Shade(b, c, a, t);
+  return OverOutput(c, a);
+}
+
+WboitOut PSSmokeWboit(Billboard b) {
+  float3 c, t;
+  float a;
+  Shade(b, c, a, t);
+  return WboitOutput(c, a, b.position.z);
+}
+
+ColoredOut PSSmokeColored(Billboard b) {
+  float3 c, t;
+  float a;
+  Shade(b, c, a, t);
+  return ColoredOutput(c, a, t, b.position.z);
+}
+
+// ---------------------------------------------------------------------------
+
+technique11 Update {
+  pass StreamOut {
+    SetVertexShader(CompileShader(vs_5_0, VSPassThrough()));
+    SetGeometryShader(ConstructGSWithSO(CompileShader(gs_5_0, GSUpdate()),
+                                        "ORIGIN.xyz; VELOCITY.xyz; SEEDAGE.xy; KINDLIFE.xy"));
+    SetPixelShader(NULL);
+    SetDepthStencilState(NoDepth, 0);
+  }
+}
+
+#define SMOKE_TRANSPARENCY(ps, blend)                          \
+  pass Transparency {                                          \
+    SetVertexShader(CompileShader(vs_5_0, VSSmoke()));         \
+    SetGeometryShader(CompileShader(gs_5_0, GSBillboard()));   \
+    SetPixelShader(CompileShader(ps_5_0, ps()));               \
+    SetBlendState(blend, float4(0, 0, 0, 0), 0xFFFFFFFF);      \
+    SetDepthStencilState(DepthTestNoWrite, 0);                 \
+    SetRasterizerState(NoCull);                                \
+  }
+
+technique11 Alpha { SMOKE_TRANSPARENCY(PSSmokeOver, Over) }
+technique11 Wboit { SMOKE_TRANSPARENCY(PSSmokeWboit, WboitAccumulate) COMPOSE_PASS(WboitCompose) }
+technique11 Colored { SMOKE_TRANSPARENCY(PSSmokeColored, ColoredAccumulate) COMPOSE_PASS(ColoredCompose) }
+technique11 ColoredLiteral { SMOKE_TRANSPARENCY(PSSmokeColored, ColoredAccumulate) COMPOSE_PASS(ColoredComposeLiteral) }
+technique11 Fire { SMOKE_TRANSPARENCY(PSSmokeOver, Additive) }

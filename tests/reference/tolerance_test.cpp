@@ -317,6 +317,13 @@ TEST(Float16Bound, ConversionAndFactorErrors) {
   // SRC_ALPHA_SAT: the larger of its two inputs' errors.
   EXPECT_EQ(Float16FactorError({BLEND_SRC_ALPHA_SAT, 0.5f, 0.25f}), 0.0);
   EXPECT_NEAR(Float16FactorError({BLEND_SRC_ALPHA_SAT, 10.8984337f, 0.25f}), 10.8984337f - 10.890625, 1e-9);
+  // SRC_ALPHA_SAT's alpha factor is the constant 1: no error.
+  RENDER_TARGET_BLEND_DESC sat = Blend(BLEND_ONE, BLEND_ZERO, BLEND_OP_ADD);
+  sat.SrcBlendAlpha = BLEND_SRC_ALPHA_SAT;
+  const BlendOutput satOut = BlendResult(DXGI_FORMAT_R16G16B16A16_FLOAT, sat, kOnes, Float4{1, 1, 1, 10.8984337f}, {},
+                                         StoredColor{});
+  EXPECT_EQ(Float16FactorError(satOut.terms.srcFactorSource[3]), 0.0);
+  EXPECT_EQ(satOut.terms.srcFactor[3], 1.0f);
 }
 
 // The first recorded H100 case (docs/conformance_gpu.md): R16G16B16A16_FLOAT,

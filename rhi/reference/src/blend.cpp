@@ -55,6 +55,7 @@ FactorSource SourceOf(BLEND blend, int channel, const BlenderInputs& in) {
     case BLEND_DEST_COLOR:
     case BLEND_INV_DEST_COLOR: s.input = in.dest[channel]; break;
     case BLEND_SRC_ALPHA_SAT:
+      if (channel == kAlpha) return {BLEND_ONE, 0.0f, 0.0f};  // (f,f,f,1): the alpha factor is the constant 1
       s.input = in.src0[kAlpha];
       s.input2 = in.dest[kAlpha];
       break;

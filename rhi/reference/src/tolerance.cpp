@@ -138,7 +138,7 @@ constexpr const char* kFloat32TermReason =
 // source colour Cs (float32 from the shader), the blend factor, SV_Target1 and
 // each factor's input x; the destination Cd already is a float16. It may then
 // form 1 - x, the products C*F and their sum or difference at float16
-// precision. NVIDIA does exactly this (docs/conformance.md: Cs = 10.8984337
+// precision. NVIDIA does exactly this (docs/conformance_gpu.md: Cs = 10.8984337
 // becomes 10.890625, RTZ, and SRC_COLOR squares that).
 //
 // Per input value x: conv(x) = |x - RTZ16(x)| (exact; 0 when x is a float16,

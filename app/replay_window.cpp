@@ -1,6 +1,6 @@
 // replay --window: document 000's translucency demos in a GLFW window.
 //
-//   replay --window [--demo smoke|shards] [--method alpha|wboit|colored|sorted] [--size WxH]
+//   replay --window [--demo smoke|shards|fire] [--method alpha|wboit|colored|sorted] [--size WxH]
 //                   [--literal-table4] [--validation] [--screenshot PATH --frames N]
 //
 // Each frame: renderer::Translucency renders the next frame offscreen (settings.timestamps
@@ -16,7 +16,8 @@
 // Input: left-drag orbits the camera around the demo's target, the wheel zooms (both turn
 // the scripted camera into an orbit camera through Translucency::SetCameraOverride; C goes
 // back to the scripted one), 1-4 pick the method (alpha, wboit, colored, sorted), D cycles
-// the demo, Space pauses (no RenderFrame: the last frame stays), Esc quits. Parameters in
+// the demo (smoke, shards, fire), Space pauses (no RenderFrame: the last frame stays), H hides the
+// overlay (its arrow collapses it), Esc quits. Parameters in
 // the overlay that are creation settings of Translucency (shard count, particle size,
 // Table 4 literal/corrected, ...) recreate it, which restarts the demo at frame 0.
 //
@@ -86,13 +87,13 @@ constexpr UINT kTestResizeWidth = 500, kTestResizeHeight = 400;
 
 void Usage() {
   std::fprintf(stderr,
-               "usage: replay --window [--demo smoke|shards] [--method alpha|wboit|colored|sorted] [--size WxH]\n"
+               "usage: replay --window [--demo smoke|shards|fire] [--method alpha|wboit|colored|sorted] [--size WxH]\n"
                "                       [--literal-table4] [--validation] [--screenshot PATH --frames N] [--test-resize]\n"
                "  --screenshot PATH --frames N  after N frames write the back buffer (overlay included) as PNG\n"
                "                                and exit; prints the overlay window's rectangle\n"
                "  --test-resize                 resize the window to 800x450 after 3 frames, 500x400 after 6\n"
                "                                (the screenshot waits for the final size)\n"
-               "  keys: 1-4 method, D demo, Space pause, C scripted camera, Esc quit;\n"
+               "  keys: 1-4 method, D demo, Space pause, C scripted camera, H overlay on/off, Esc quit;\n"
                "        left-drag orbits, the wheel zooms\n");
 }
 
@@ -107,7 +108,8 @@ bool ParseOptions(int argc, char** argv, Options* o, std::string* error) {
     std::string v;
     if (a == "--window") {
     } else if (a == "--demo") {
-      if (!next(&v) || !renderer::ParseDemo(v, &o->demo)) return *error = "--demo takes smoke or shards", false;
+      if (!next(&v) || !renderer::ParseDemo(v, &o->demo))
+        return *error = "--demo takes smoke, shards or fire", false;
     } else if (a == "--method") {
       if (!next(&v) || !renderer::ParseMethod(v, &o->method))
         return *error = "--method takes alpha, wboit, colored or sorted", false;
@@ -155,6 +157,15 @@ bool Compile(const char* entry, const char* profile, std::vector<uint32_t>* spir
   return true;
 }
 
+// D cycles smoke -> shards -> fire -> smoke.
+TranslucencyDemo NextDemo(TranslucencyDemo demo) {
+  switch (demo) {
+    case TranslucencyDemo::Smoke: return TranslucencyDemo::Shards;
+    case TranslucencyDemo::Shards: return TranslucencyDemo::Fire;
+    default: return TranslucencyDemo::Smoke;
+  }
+}
+
 const TranslucencyMethod kMethods[4] = {TranslucencyMethod::Alpha, TranslucencyMethod::Wboit,
                                         TranslucencyMethod::Colored, TranslucencyMethod::Sorted};
 
@@ -166,9 +177,9 @@ struct Orbit {
   float yaw = 0, pitch = 0, distance = 7;
 
   void StartFromScripted(TranslucencyDemo demo, uint32_t frame) {
-    const bool smoke = demo == TranslucencyDemo::Smoke;
-    target = smoke ? glm::vec3(0.3f, 1.5f, 0.5f) : glm::vec3(0, 1.9f, 0);
-    const float radius = smoke ? 7.0f : 7.5f, height = 1.2f;
+    const bool shards = demo == TranslucencyDemo::Shards;
+    target = shards ? glm::vec3(0, 1.9f, 0) : glm::vec3(0.3f, 1.5f, 0.5f);
+    const float radius = shards ? 7.5f : 7.0f, height = 1.2f;
     yaw = 0.3f * std::sin(float(frame) * 0.01f);
     pitch = std::atan2(height, radius);
     distance = std::sqrt(radius * radius + height * height);
@@ -222,7 +233,7 @@ class ReplayWindow {
   renderer::TranslucencySettings settings_;  // what the next CreateScene uses
   TranslucencyMethod method_;
   std::unique_ptr<renderer::Translucency> scene_;
-  bool recreate_ = false, paused_ = false, quit_ = false;
+  bool recreate_ = false, paused_ = false, quit_ = false, showOverlay_ = true;
   std::string sceneError_;  // why the last recreation failed
 
   ComPtr<rhi::SwapChain> swapChain_;
@@ -259,11 +270,12 @@ void ReplayWindow::OnKey(int key, int action, int) {
       method_ = kMethods[key - GLFW_KEY_1];
       break;
     case GLFW_KEY_D:
-      settings_.demo = settings_.demo == TranslucencyDemo::Smoke ? TranslucencyDemo::Shards : TranslucencyDemo::Smoke;
+      settings_.demo = NextDemo(settings_.demo);
       recreate_ = true;
       break;
     case GLFW_KEY_SPACE: paused_ = !paused_; break;
     case GLFW_KEY_C: orbiting_ = false; break;
+    case GLFW_KEY_H: showOverlay_ = !showOverlay_; break;
     case GLFW_KEY_ESCAPE: quit_ = true; break;
     default: break;
   }
@@ -399,11 +411,15 @@ void ReplayWindow::BuildOverlay() {
   ImGuiIO& io = ImGui::GetIO();
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_Always);
   ImGui::SetNextWindowBgAlpha(0.94f);
-  ImGui::Begin("replay", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove |
-                                      ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings);
+  const bool expanded = ImGui::Begin(
+      "replay", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings);
   const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
   overlayRect_[0] = pos.x * io.DisplayFramebufferScale.x, overlayRect_[1] = pos.y * io.DisplayFramebufferScale.y;
   overlayRect_[2] = size.x * io.DisplayFramebufferScale.x, overlayRect_[3] = size.y * io.DisplayFramebufferScale.y;
+  if (!expanded) {  // collapsed to its title bar
+    ImGui::End();
+    return;
+  }
 
   ImGui::Text("%s", device_->GetAdapterName());
   const uint32_t shown = scene_ && scene_->frame() > 0 ? scene_->frame() - 1 : 0;  // frame() is the next one
@@ -420,7 +436,7 @@ void ReplayWindow::BuildOverlay() {
   } else {
     ImGui::TextDisabled("GPU ms: n/a (disjoint or not measured)");
   }
-  if (settings_.demo == TranslucencyDemo::Smoke)
+  if (settings_.demo != TranslucencyDemo::Shards)
     ImGui::Text("live particles: %llu", static_cast<unsigned long long>(scene_ ? scene_->particleCount() : 0));
   else
     ImGui::Text("shards: %u (one DrawIndexedInstanced)", settings_.shardCount);
@@ -435,16 +451,19 @@ void ReplayWindow::BuildOverlay() {
     std::snprintf(label, sizeof label, "%d %s", i + 1, renderer::ToString(kMethods[i]));
     if (ImGui::RadioButton(label, &method, i)) method_ = kMethods[i];
   }
-  int demo = settings_.demo == TranslucencyDemo::Smoke ? 0 : 1;
-  if (ImGui::Combo("demo (D)", &demo, "smoke\0shards\0")) {
-    settings_.demo = demo == 0 ? TranslucencyDemo::Smoke : TranslucencyDemo::Shards;
+  const TranslucencyDemo demos[3] = {TranslucencyDemo::Smoke, TranslucencyDemo::Shards, TranslucencyDemo::Fire};
+  int demo = 0;
+  for (int i = 0; i < 3; ++i)
+    if (demos[i] == settings_.demo) demo = i;
+  if (ImGui::Combo("demo (D)", &demo, "smoke\0shards\0fire\0")) {
+    settings_.demo = demos[demo];
     recreate_ = true;
   }
 
   if (ImGui::CollapsingHeader("Parameters (applying restarts the demo)")) {
     // Creation settings of Translucency: a changed value recreates it once the edit ends.
     auto apply = [&] { recreate_ |= ImGui::IsItemDeactivatedAfterEdit(); };
-    if (settings_.demo == TranslucencyDemo::Smoke) {
+    if (settings_.demo != TranslucencyDemo::Shards) {
       ImGui::SliderFloat("particle size", &settings_.particleSize, 0.05f, 1.0f, "%.2f");
       apply();
       int spawn = int(settings_.rule.spawnPerFrame);
@@ -452,6 +471,9 @@ void ReplayWindow::BuildOverlay() {
       apply();
       int emitters = int(settings_.rule.emitters);
       if (ImGui::SliderInt("emitters", &emitters, 1, 256)) settings_.rule.emitters = uint32_t(emitters);
+      apply();
+      int extra = int(settings_.extraShards);
+      if (ImGui::SliderInt("extra shards", &extra, 0, 20000)) settings_.extraShards = uint32_t(extra);
       apply();
     } else {
       int shards = int(settings_.shardCount);
@@ -467,7 +489,7 @@ void ReplayWindow::BuildOverlay() {
   if (!sceneError_.empty())
     ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.4f, 1.0f), "recreating failed: %.60s", sceneError_.c_str());
   ImGui::Text("camera: %s", orbiting_ ? "orbit (C: scripted)" : "scripted (drag/wheel: orbit)");
-  ImGui::TextDisabled("1-4 method  D demo  Space pause  Esc quit");
+  ImGui::TextDisabled("1-4 method  D demo  Space pause  H hide  Esc quit");
   ImGui::End();
 }
 
@@ -593,7 +615,10 @@ int ReplayWindow::Run() {
     ImGui_ImplRhi_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
-    BuildOverlay();
+    if (showOverlay_)
+      BuildOverlay();
+    else
+      std::fill(std::begin(overlayRect_), std::end(overlayRect_), 0.0f);
     ImGui::Render();
     ImGui_ImplRhi_RenderDrawData(ImGui::GetDrawData());
     // imgui_rhi leaves its state bound; the next frame of Translucency expects the defaults

@@ -13,8 +13,9 @@
 //
 // Differences from imgui_impl_dx11: the RHI has no Get* methods, so the caller's
 // pipeline state is not saved and restored; RenderDrawData leaves the ImGui state bound
-// (input layout, buffers, shaders, blend, depth-stencil, rasterizer, viewport, scissor,
-// PS slot t0/s0, VS slot b0). The caller binds the render target before calling it, as
+// (input layout, buffers, shaders, blend, depth-stencil, rasterizer with the scissor test
+// on, viewport, scissor, PS s0, VS b0; PS t0 is unbound at the end): call ClearState or
+// rebind what later draws need. The caller binds the render target before calling it, as
 // with imgui_impl_dx11; the viewport covers DisplaySize * FramebufferScale.
 #pragma once
 

@@ -39,7 +39,7 @@ class ReplayTest : public GpuTest {
 
 // The paper's claim (Fig. 1). On this scene it does NOT hold, and the investigation says the
 // scene and the weight function are why, not a bug (the effect-driven replay, 128x72, 40 frames):
-//   alpha 2.739 vs WBOIT 3.883 RMSE to sorted (docs/images at 640x360, 120 frames: 5.8 vs 9.1).
+//   alpha 2.739 vs WBOIT 3.883 RMSE to sorted (docs/images at 640x360, 120 frames: 5.62 vs 8.87).
 // - The sorted reference is right: particles read back after this frame's update (count from
 //   SO_STATISTICS), keyed by the view depth of the same centre the VS computes
 //   (p = t^2 a / 2 + t v0 + p0), drawn back to front with OVER.

@@ -120,6 +120,26 @@ TEST_F(ReplayTest, ColoredOitTintsTheBackgroundAndWboitDoesNot) {
   EXPECT_NEAR(w.withShards, w.without, 0.05) << "WBOIT ignores transmission";
 }
 
+// The effect-driven update pass (smoke.fx Update/StreamOut) frame by frame: the first frame
+// (Draw of the init buffer), the next ones (DrawAuto of the last stream output), the ramp-up
+// and the steady state, for the smoke and the fire demo's particle systems.
+TEST_F(ReplayTest, ParticleCountEveryFrameEqualsTheCpuModel) {
+  for (TranslucencyDemo demo : {TranslucencyDemo::Smoke, TranslucencyDemo::Fire}) {
+    TranslucencySettings s = Small(demo);
+    s.countParticles = true;
+    s.rule = {7, 3, 5, 9};  // dies and respawns within the 30 frames
+    std::string error;
+    auto t = Translucency::Create(device.Get(), context.Get(), s, &error);
+    ASSERT_NE(t, nullptr) << error;
+    renderer::ParticleCountModel model(s.rule);
+    for (int frame = 0; frame < 30; ++frame) {
+      t->RenderFrame(frame % 2 ? TranslucencyMethod::Alpha : TranslucencyMethod::Colored);
+      EXPECT_EQ(t->particleCount(), model.Step()) << renderer::ToString(demo) << " frame " << frame;
+    }
+    EXPECT_FALSE(t->ReadFrame().empty());
+  }
+}
+
 TEST_F(ReplayTest, ParticleCountAfterNFramesEqualsTheCpuModel) {
   TranslucencySettings s = Small(TranslucencyDemo::Smoke);
   s.countParticles = true;

@@ -130,6 +130,31 @@ TEST_F(TraceTest, ADisabledTraceForwardsWithoutRecording) {
   EXPECT_EQ(rhi::CreateTracingContext(nullptr, &trace, traced.ReleaseAndGetAddressOf()), rhi::E_INVALIDARG);
 }
 
+// BeginEvent / EndEvent / SetMarker reach the real context (debug-utils labels: the fixture
+// enables the validation layer and so VK_EXT_debug_utils; any validation message fails the
+// test) and the trace records them in order around the passes.
+TEST_F(TraceTest, AnnotationsAreForwardedAndRecorded) {
+  rhi::Trace trace;
+  ComPtr<rhi::DeviceContext> traced;
+  ASSERT_EQ(rhi::CreateTracingContext(context.Get(), &trace, traced.GetAddressOf()), rhi::S_OK);
+  TranslucencySettings s;
+  s.demo = TranslucencyDemo::Shards;
+  s.width = 32, s.height = 18;
+  s.shardCount = 10;
+  std::string error;
+  auto t = Translucency::Create(device.Get(), traced.Get(), s, &error);
+  ASSERT_NE(t, nullptr) << error;
+  traced->BeginEvent("frame 0");
+  t->RenderFrame(TranslucencyMethod::Wboit);
+  traced->SetMarker("after the frame");
+  traced->EndEvent();
+  const std::vector<std::string> want = {"BeginEvent(frame 0)",         "SetMarker(Opaque/Scene)",
+                                         "SetMarker(Wboit/Transparency)", "SetMarker(Wboit/Compose)",
+                                         "SetMarker(after the frame)",   "EndEvent()"};
+  EXPECT_EQ(trace.Filter({"BeginEvent", "EndEvent", "SetMarker"}), want);
+  EXPECT_FALSE(t->ReadFrame().empty());
+}
+
 // ---------------------------------------------------------------------------
 // The state blocks of shaders_hlsl/translucency_states.fxh against the tables.
 

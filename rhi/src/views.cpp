@@ -22,6 +22,11 @@ VkDescriptorBufferInfo ViewTarget::bufferRange() const {
   return {buffer_->handle(), buffer_->baseOffset() + firstByte_, byteCount_};
 }
 
+void ViewTarget::Hold(Resource* resource) {
+  resource_ = resource;
+  resourceHold_ = Bound<Bindable>(dynamic_cast<Bindable*>(resource));
+}
+
 HRESULT ViewTarget::InitTexture(DeviceImpl& device, Resource* resource, DXGI_FORMAT format, VkImageViewType type,
                                 VkImageSubresourceRange range, VkImageUsageFlags usage, const char* call) {
   Gpu& gpu = device.gpu();
@@ -37,7 +42,7 @@ HRESULT ViewTarget::InitTexture(DeviceImpl& device, Resource* resource, DXGI_FOR
       range.baseArrayLayer + range.layerCount > shape.arraySize)
     return gpu.Refuse(std::string(call) + ": mip or array range outside the texture");
   device_ = &device;
-  resource_ = resource;
+  Hold(resource);
   texture_ = texture;
   format_ = format;
   range_ = range;
@@ -77,7 +82,7 @@ HRESULT ViewTarget::InitBuffer(DeviceImpl& device, Resource* resource, DXGI_FORM
     return gpu.Refuse(std::string(call) + ": elements " + std::to_string(firstElement) + "+" +
                       std::to_string(numElements) + " lie outside the buffer");
   device_ = &device;
-  resource_ = resource;
+  Hold(resource);
   buffer_ = buffer;
   format_ = format;
   firstByte_ = first;

@@ -10,7 +10,7 @@ namespace rhi::vk {
 // descriptors and attachments need.
 class ViewTarget {
  public:
-  Resource* resource() const { return resource_.Get(); }
+  Resource* resource() const { return resource_; }
   // Exactly one of these is non-null.
   BufferImpl* buffer() const { return buffer_; }
   TextureStorage* texture() const { return texture_; }
@@ -34,8 +34,15 @@ class ViewTarget {
                      UINT numElements, bool storage, const char* call);
 
  private:
+  // Sets the viewed resource and keeps it alive for the view's lifetime.
+  void Hold(Resource* resource);
+
   DeviceImpl* device_ = nullptr;
-  ComPtr<Resource> resource_;
+  Resource* resource_ = nullptr;
+  // A binding, not a reference: a view kept only by the context's bindings must
+  // not keep the device alive through its resource (device -> context -> view ->
+  // resource -> device would never be released).
+  Bound<Bindable> resourceHold_;
   BufferImpl* buffer_ = nullptr;
   TextureStorage* texture_ = nullptr;
   DXGI_FORMAT format_ = DXGI_FORMAT_UNKNOWN;

@@ -47,10 +47,15 @@ void GpuTest::SetUp() {
   ASSERT_EQ(rhi::CreateDevice(&options, device.GetAddressOf(), context.GetAddressOf()), rhi::S_OK);
 }
 
-void GpuTest::TearDown() {
+// After derived fixtures' members are gone (gtest reports failures raised in
+// the fixture's destructor against the test), so the device must go with this
+// last reference: one that outlives it leaks its Vulkan device, and work still
+// queued then races the process exit.
+GpuTest::~GpuTest() {
   if (context) context->Flush();
   context.Reset();
-  device.Reset();
+  if (rhi::Device* last = device.Detach())
+    EXPECT_EQ(last->Release(), 0u) << "the device outlives its last reference (a leaked device child?)";
   for (const Message& m : messages_)
     if (m.category == rhi::MESSAGE_CATEGORY_VULKAN_VALIDATION) ADD_FAILURE() << "validation layer: " << m.text;
 }

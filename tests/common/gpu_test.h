@@ -1,7 +1,7 @@
 // The fixture of every test that runs on a Vulkan device.
 //
 // It creates a device with the Khronos validation layer on and collects every
-// message: a validation-layer message fails the test in TearDown; refusals
+// message: a validation-layer message fails the test; refusals
 // (the D3D11 debug layer's role) are kept for tests to inspect.
 #pragma once
 
@@ -30,8 +30,8 @@ std::vector<uint32_t> CompileHlsl(std::string_view source, const char* entry, co
 
 class GpuTest : public ::testing::Test {
  protected:
+  ~GpuTest() override;
   void SetUp() override;
-  void TearDown() override;
 
   // Messages that are not validation-layer messages (refusal reasons).
   std::vector<std::string> Refusals() const;

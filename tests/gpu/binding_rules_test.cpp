@@ -23,11 +23,6 @@ class BindingRulesTest : public RhiGpuTest {
     ps_ = PS(R"(Texture2D t : register(t0);
                 float4 main(float4 pos : SV_Position) : SV_Target { return t.Load(int3(pos.xy, 0)); })");
   }
-  void TearDown() override {
-    texture_ = {}, other_ = {};
-    srv_.Reset(), vs_.Reset(), ps_.Reset();
-    RhiGpuTest::TearDown();
-  }
   // Fills `other_` (cleared red first) with what the pixel shader reads from t0.
   std::vector<uint8_t> SampleIntoOther() {
     BindTarget(other_.rtv.Get(), 8, 8);
@@ -78,11 +73,6 @@ class StreamOutBindingTest : public RhiGpuTest {
     std::vector<Vertex> quad = Quad(0, 0, 4, 8, kRed, 8, 8);
     buffer_ = MakeBuffer(BIND_VERTEX_BUFFER | BIND_STREAM_OUTPUT, quad.data(),
                          static_cast<UINT>(quad.size() * sizeof(Vertex)));
-  }
-  void TearDown() override {
-    target_ = {};
-    buffer_.Reset();
-    RhiGpuTest::TearDown();
   }
   void BindAsVertexBuffer() {
     const UINT stride = sizeof(Vertex), offset = 0;
@@ -158,6 +148,46 @@ TEST_F(RhiGpuTest, BindingBufferAsComputeUavUnbindsItsComputeSrv) {
   context->CSSetUnorderedAccessViews(0, 1, uavs, nullptr);
   context->Dispatch(1, 1, 1);
   EXPECT_EQ(ReadBufferAs<uint32_t>(buffer.Get())[0], 1u);
+}
+
+// D3D11 lifetimes: the context's bindings keep objects alive but not the
+// device. A view bound only by the context holds its resource; neither may
+// keep the device alive, or device -> context -> view -> resource -> device
+// would never be released (this leaked every device that drew into a target).
+TEST(DeviceLifetimeTest, ObjectsKeptOnlyByBindingsDoNotKeepTheDeviceAlive) {
+  DEVICE_OPTIONS options;
+  options.EnableValidation = TRUE;
+  std::vector<std::string> validation;
+  options.OnMessage = [&](MESSAGE_CATEGORY category, MESSAGE_SEVERITY, const char* text) {
+    if (category == MESSAGE_CATEGORY_VULKAN_VALIDATION) validation.push_back(text);
+  };
+  Device* device = nullptr;
+  DeviceContext* context = nullptr;
+  ASSERT_EQ(CreateDevice(&options, &device, &context), S_OK);
+  {
+    TEXTURE2D_DESC desc{};
+    desc.Width = desc.Height = 4;
+    desc.MipLevels = desc.ArraySize = 1;
+    desc.Format = DXGI_FORMAT_R8G8B8A8_UNORM;
+    desc.SampleDesc.Count = 1;
+    desc.BindFlags = BIND_RENDER_TARGET | BIND_SHADER_RESOURCE;
+    ComPtr<Texture2D> texture, sampled;
+    ASSERT_EQ(device->CreateTexture2D(&desc, nullptr, texture.GetAddressOf()), S_OK);
+    ASSERT_EQ(device->CreateTexture2D(&desc, nullptr, sampled.GetAddressOf()), S_OK);
+    ComPtr<RenderTargetView> rtv;
+    ComPtr<ShaderResourceView> srv;
+    ASSERT_EQ(device->CreateRenderTargetView(texture.Get(), nullptr, rtv.GetAddressOf()), S_OK);
+    ASSERT_EQ(device->CreateShaderResourceView(sampled.Get(), nullptr, srv.GetAddressOf()), S_OK);
+    RenderTargetView* rtvs[] = {rtv.Get()};
+    context->OMSetRenderTargets(1, rtvs, nullptr);
+    ShaderResourceView* srvs[] = {srv.Get()};
+    context->PSSetShaderResources(0, 1, srvs);
+    const FLOAT red[4] = {1, 0, 0, 1};
+    context->ClearRenderTargetView(rtv.Get(), red);
+  }  // the application's references go; the bindings stay
+  EXPECT_EQ(context->Release(), 1u);  // the immediate context's reference was one on the device
+  EXPECT_EQ(device->Release(), 0u) << "a bound view kept the device alive";
+  EXPECT_TRUE(validation.empty()) << validation.front();
 }
 
 }  // namespace

@@ -177,11 +177,6 @@ class InstanceIdTest : public RhiGpuTest {
     context->VSSetShader(vs_.Get(), nullptr, 0);
     context->PSSetShader(ps_.Get(), nullptr, 0);
   }
-  void TearDown() override {
-    target_ = {};
-    vs_.Reset(), ps_.Reset(), layout_.Reset(), vb_.Reset(), instances_.Reset(), ib_.Reset();
-    RhiGpuTest::TearDown();
-  }
   std::vector<std::string> Result() { return Picture(ReadTexture(target_.texture.Get()), 8, 8, kLegend); }
 
   static constexpr UINT kListStart = 4;  // first vertex of the list copy of the column

@@ -59,13 +59,6 @@ int CountPixels(const std::vector<uint8_t>& rgba8, uint32_t value) {
   return count;
 }
 
-void RhiGpuTest::TearDown() {
-  colorVS_.Reset();
-  colorPS_.Reset();
-  colorLayout_.Reset();
-  GpuTest::TearDown();
-}
-
 void RhiGpuTest::UseColorPipeline() {
   static const INPUT_ELEMENT_DESC kElements[] = {
       {"POSITION", 0, DXGI_FORMAT_R32G32B32_FLOAT, 0, 0, INPUT_PER_VERTEX_DATA, 0},

@@ -96,7 +96,6 @@ class RhiGpuTest : public GpuTest {
   ComPtr<rhi::VertexShader> colorVS_;
   ComPtr<rhi::PixelShader> colorPS_;
   ComPtr<rhi::InputLayout> colorLayout_;
-  void TearDown() override;
 };
 
 }  // namespace rhi_test

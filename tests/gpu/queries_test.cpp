@@ -17,10 +17,6 @@ class QueryTest : public RhiGpuTest {
     Clear(target_.rtv.Get(), kBlack);
     UseColorPipeline();
   }
-  void TearDown() override {
-    target_ = {};
-    RhiGpuTest::TearDown();
-  }
   ComPtr<Query> MakeQuery(QUERY type) {
     QUERY_DESC desc{type, 0};
     ComPtr<Query> query;
@@ -134,10 +130,6 @@ class StreamOutQueryTest : public QueryTest {
               S_OK);
     vertices_ = Quad(2, 3, 6, 7, kWhite, 16, 16);
     for (size_t i = 0; i < vertices_.size(); ++i) vertices_[i].color = {static_cast<float>(i), 0, 0, 1};
-  }
-  void TearDown() override {
-    so_.Reset();
-    QueryTest::TearDown();
   }
   // Draws the 6 vertices (2 triangles) with stream output into `buffer`.
   void DrawWithStreamOut(Buffer* buffer) {

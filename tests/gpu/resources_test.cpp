@@ -45,10 +45,6 @@ class ResourceTest : public RhiGpuTest {
     context->PSSetShader(ps, nullptr, 0);
     context->Draw(3, 0);
   }
-  void TearDown() override {
-    fullScreenVS_.Reset();
-    RhiGpuTest::TearDown();
-  }
   ComPtr<VertexShader> fullScreenVS_;
 };
 

@@ -23,11 +23,6 @@ class StateTest : public RhiGpuTest {
     Clear(target_.rtv.Get(), kBlack);
     UseColorPipeline();
   }
-  void TearDown() override {
-    target_ = {};
-    depth_ = {};
-    RhiGpuTest::TearDown();
-  }
   std::vector<uint8_t> Pixels() { return ReadTexture(target_.texture.Get()); }
   std::vector<std::string> Result() { return Picture(Pixels(), 8, 8, kLegend); }
   // Binds a depth-stencil target of `format` next to the colour target.

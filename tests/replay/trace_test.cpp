@@ -84,9 +84,6 @@ TEST_F(TraceTest, PassesAndDrawsFollowThePapersFrameOrder) {
                              << "\nfull trace:\n"
                              << trace.ToString();
       }
-      // Wait for the GPU: lavapipe compiles shader variants on its queue thread, and the
-      // fixture's device outlives the test (see the note at the end of this file).
-      EXPECT_FALSE(t->ReadFrame().empty());
       traced.Reset();
     }
 }
@@ -109,7 +106,6 @@ TEST_F(TraceTest, StreamOutTargetsAreSetAroundTheUpdateDrawOnly) {
                                          "SetMarker(Update/StreamOut)", "DrawAuto()", "SOSetTargets(0)",
                                          "SetMarker(Wboit/Transparency)", "DrawAuto()", "SetMarker(Wboit/Compose)"};
   EXPECT_EQ(got, want) << trace.ToString();
-  EXPECT_FALSE(t->ReadFrame().empty());  // nothing left in flight at exit
 }
 
 TEST_F(TraceTest, ADisabledTraceForwardsWithoutRecording) {
@@ -152,7 +148,6 @@ TEST_F(TraceTest, AnnotationsAreForwardedAndRecorded) {
                                          "SetMarker(Wboit/Transparency)", "SetMarker(Wboit/Compose)",
                                          "SetMarker(after the frame)",   "EndEvent()"};
   EXPECT_EQ(trace.Filter({"BeginEvent", "EndEvent", "SetMarker"}), want);
-  EXPECT_FALSE(t->ReadFrame().empty());
 }
 
 // ---------------------------------------------------------------------------
@@ -215,12 +210,6 @@ TEST_F(TraceTest, EffectStateBlocksAreTheSpecTables) {
     EXPECT_EQ(d.DepthEnable, rhi::FALSE);
   }
 }
-
-// Note: ending a test with work still queued made this binary crash at exit 5 times in 12
-// (lavapipe's queue thread JIT-compiling while LLVM's static destructors ran): the RHI device
-// of the GpuTest fixture is never destroyed (rhi::vk::Gpu::~Gpu is not reached, in
-// rhi_gpu_tests too), so lavapipe's threads outlive main(). Each test here therefore ends
-// with a read-back, which waits for the GPU.
 
 }  // namespace
 }  // namespace rhi_test

@@ -32,8 +32,6 @@ class ImGuiRhiTest : public GpuTest {
   void TearDown() override {
     ImGui_ImplRhi_Shutdown();
     ImGui::DestroyContext();
-    target_ = {};
-    GpuTest::TearDown();
   }
 
   // Clears the target, renders the current ImGui frame into it and reads it back.

@@ -5,8 +5,8 @@
 //
 // Each frame: renderer::Translucency renders the next frame offscreen (settings.timestamps
 // and settings.countParticles on, so the overlay has per-pass GPU times and the live
-// particle count); the frame is read back (Translucency::ReadFrame) and uploaded into a
-// texture of this window, which a full-screen triangle (shaders_hlsl/imgui.hlsl, BlitVS /
+// particle count); its frame target (Translucency::FrameTexture), bound as a shader
+// resource, is what a full-screen triangle (shaders_hlsl/imgui.hlsl, BlitVS /
 // BlitPS) draws into the swap chain's back buffer, letterboxed when the window's aspect
 // differs from the scene's (--size, also the initial window size); Dear ImGui draws its
 // overlay on top through the RHI (imgui_rhi.h); then Present. The swap chain is
@@ -219,7 +219,6 @@ class ReplayWindow {
   bool CreateScene();
   bool AttachBackBuffer();
   void ReleaseBackBuffer();
-  void UploadScene();
   void DrawScene(UINT width, UINT height);
   void BuildOverlay();
   bool SaveScreenshot(const std::string& path);
@@ -241,7 +240,6 @@ class ReplayWindow {
   ComPtr<rhi::RenderTargetView> backBufferView_;
   UINT width_ = 0, height_ = 0;
 
-  ComPtr<rhi::Texture2D> sceneTexture_;
   ComPtr<rhi::ShaderResourceView> sceneView_;
   ComPtr<rhi::VertexShader> blitVs_;
   ComPtr<rhi::PixelShader> blitPs_;
@@ -351,11 +349,8 @@ bool ReplayWindow::CreateScene() {
   scene_ = std::move(scene);
   orbiting_ = false;
   times_ = {};
-  rhi::TEXTURE2D_DESC desc{settings_.width, settings_.height, 1, 1, rhi::DXGI_FORMAT_R8G8B8A8_UNORM, {1, 0},
-                           rhi::USAGE_DEFAULT, rhi::BIND_SHADER_RESOURCE, 0, 0};
-  return rhi::SUCCEEDED(device_->CreateTexture2D(&desc, nullptr, sceneTexture_.ReleaseAndGetAddressOf())) &&
-         rhi::SUCCEEDED(device_->CreateShaderResourceView(sceneTexture_.Get(), nullptr,
-                                                          sceneView_.ReleaseAndGetAddressOf()));
+  return rhi::SUCCEEDED(device_->CreateShaderResourceView(scene_->FrameTexture(), nullptr,
+                                                         sceneView_.ReleaseAndGetAddressOf()));
 }
 
 bool ReplayWindow::AttachBackBuffer() {
@@ -368,14 +363,6 @@ void ReplayWindow::ReleaseBackBuffer() {
   ctx_->OMSetRenderTargets(0, nullptr, nullptr);
   backBufferView_.Reset();
   backBuffer_.Reset();
-}
-
-// Translucency renders into its own target; its frame comes back through ReadFrame
-// (the renderer exposes no texture) and goes into sceneTexture_.
-void ReplayWindow::UploadScene() {
-  const std::vector<uint8_t> pixels = scene_->ReadFrame();
-  if (pixels.empty()) return;
-  ctx_->UpdateSubresource(sceneTexture_.Get(), 0, nullptr, pixels.data(), settings_.width * 4, 0);
 }
 
 // The scene, scaled to fit the back buffer with its aspect kept (bars cleared dark grey).
@@ -602,7 +589,6 @@ int ReplayWindow::Run() {
                                           : std::nullopt);
       scene_->RenderFrame(method_);
       times_ = scene_->LastTimes();
-      UploadScene();
     }
     ctx_->ClearState();  // Translucency's bindings (GS, stream output, targets) end here
     DrawScene(width_, height_);

@@ -769,6 +769,8 @@ void Translucency::ComposePass(TranslucencyMethod method) {
   ctx->Draw(3, 0);
 }
 
+Texture2D* Translucency::FrameTexture() const { return impl_->frame.Get(); }
+
 std::vector<uint8_t> Translucency::ReadFrame() {
   Impl& m = *impl_;
   TEXTURE2D_DESC desc;

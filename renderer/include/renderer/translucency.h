@@ -81,6 +81,9 @@ class Translucency {
 
   // The frame as tightly packed RGBA8 rows.
   std::vector<uint8_t> ReadFrame();
+  // The frame target itself (R8G8B8A8_UNORM, bindable as a shader resource), for
+  // showing the frame without a read-back; the next RenderFrame overwrites it.
+  rhi::Texture2D* FrameTexture() const;
   // Waits for and returns the pass times of the last frame (settings.timestamps).
   PassTimes LastTimes();
 

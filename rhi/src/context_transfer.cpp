@@ -145,10 +145,32 @@ void ContextImpl::ClearRenderTargetView(RenderTargetView* pRenderTargetView, con
   // Formats without alpha (B8G8R8X8) keep alpha at 1 so that it reads as 1.
   if (format->alphaIsOne) color.float32[3] = 1.0f;
   EndRendering();
-  Use(texture, uses::kTransferWrite);
+  const VkImageSubresourceRange range = view->range();
+  if (format->vkFormat == texture.vkFormat()) {
+    Use(texture, uses::kTransferWrite);
+    FlushBarriers();
+    vkCmdClearColorImage(Commands(), texture.image(), VK_IMAGE_LAYOUT_GENERAL, &color, 1, &range);
+    return;
+  }
+  // A view that reinterprets a typeless texture (R8G8B8A8_UNORM of an image stored
+  // as R8G8B8A8_UINT): vkCmdClearColorImage would read the colour in the image's
+  // format, a rendering pass's clear reads it in the view's.
+  Use(texture, uses::kColorAttachment);
   FlushBarriers();
-  VkImageSubresourceRange range = view->range();
-  vkCmdClearColorImage(Commands(), texture.image(), VK_IMAGE_LAYOUT_GENERAL, &color, 1, &range);
+  VkRenderingAttachmentInfo attachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  attachment.imageView = view->imageView();
+  attachment.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
+  attachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  attachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  attachment.clearValue.color = color;
+  const VkExtent3D mip = texture.MipExtent(range.baseMipLevel);
+  VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  info.renderArea = {{0, 0}, {mip.width, mip.height}};
+  info.layerCount = range.layerCount;
+  info.colorAttachmentCount = 1;
+  info.pColorAttachments = &attachment;
+  vkCmdBeginRendering(Commands(), &info);
+  vkCmdEndRendering(Commands());
 }
 
 void ContextImpl::ClearDepthStencilView(DepthStencilView* pDepthStencilView, UINT ClearFlags, FLOAT Depth,

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "context.h"
 #include "states/formats.h"
@@ -274,6 +275,17 @@ HRESULT TextureStorage::Initialize(DeviceImpl& device, const TextureShape& shape
   return S_OK;
 }
 
+std::vector<VkFormat> TextureStorage::FamilyViewFormats() const {
+  const auto* format = states::GetFormatInfo(shape_.format);
+  if (format->kind != states::ComponentKind::Typeless || (aspects_ & VK_IMAGE_ASPECT_DEPTH_BIT)) return {};
+  std::vector<VkFormat> formats{vkFormat_};
+  for (const states::FormatInfo& member : states::AllFormats())
+    if (member.family == shape_.format && !member.isDepth && member.kind != states::ComponentKind::Typeless &&
+        std::find(formats.begin(), formats.end(), member.vkFormat) == formats.end())
+      formats.push_back(member.vkFormat);
+  return formats;
+}
+
 HRESULT TextureStorage::CreateImage(DeviceImpl& device) {
   Gpu& gpu = device.gpu();
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
@@ -286,9 +298,18 @@ HRESULT TextureStorage::CreateImage(DeviceImpl& device) {
   info.tiling = VK_IMAGE_TILING_OPTIMAL;
   info.usage = ImageUsage(shape_, aspects_ & VK_IMAGE_ASPECT_DEPTH_BIT);
   info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  // Views may reinterpret typeless formats, and cube views need the flag.
-  info.flags = VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT;
   if (shape_.miscFlags & RESOURCE_MISC_TEXTURECUBE) info.flags |= VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT;
+  // Only views of typeless colour resources reinterpret the format (D3D11's
+  // IsViewCompatible rule); listing the family lets drivers keep render-target
+  // compression, which an unrestricted MUTABLE_FORMAT image may lose.
+  const std::vector<VkFormat> viewFormats = FamilyViewFormats();
+  VkImageFormatListCreateInfo formatList{VK_STRUCTURE_TYPE_IMAGE_FORMAT_LIST_CREATE_INFO};
+  if (!viewFormats.empty()) {
+    info.flags |= VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT;
+    formatList.viewFormatCount = static_cast<uint32_t>(viewFormats.size());
+    formatList.pViewFormats = viewFormats.data();
+    info.pNext = &formatList;
+  }
   VkResult result = vkCreateImage(gpu.Device(), &info, nullptr, &image_);
   if (result != VK_SUCCESS)
     return gpu.Refuse(std::string("vkCreateImage failed for this texture: ") + ResultName(result));

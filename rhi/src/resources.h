@@ -88,6 +88,8 @@ class TextureStorage : public TrackedResource {
 
  private:
   HRESULT CreateImage(DeviceImpl& device);
+  // The VkFormats views of a typeless colour texture may use; empty when views keep the image's format.
+  std::vector<VkFormat> FamilyViewFormats() const;
   HRESULT CreateStagingBuffer(DeviceImpl& device);
 
   DeviceImpl* device_ = nullptr;

@@ -38,6 +38,10 @@ HRESULT ViewTarget::InitTexture(DeviceImpl& device, Resource* resource, DXGI_FOR
   const auto* info = states::GetFormatInfo(format);
   if (!info || info->kind == states::ComponentKind::Typeless)
     return gpu.Refuse(std::string(call) + ": view format " + std::to_string(format) + " must be a typed format");
+  if (!states::IsViewCompatible(shape.format, format))
+    return gpu.Refuse(std::string(call) + ": view format " + info->name + " cannot view a resource of format " +
+                      states::FormatName(shape.format) +
+                      " (a typed resource takes only its own format, a typeless one the members of its family)");
   if (range.baseMipLevel + range.levelCount > shape.mipLevels ||
       range.baseArrayLayer + range.layerCount > shape.arraySize)
     return gpu.Refuse(std::string(call) + ": mip or array range outside the texture");

@@ -72,6 +72,51 @@ TEST_F(ResourceTest, CreateBufferRefusesInvalidDescriptionsWithReason) {
   }
 }
 
+// D3D11.0: a fully typed texture is viewed only in its own format; a typeless one
+// in any member of its family (here UNORM and UNORM_SRGB of R8G8B8A8_TYPELESS,
+// the same bytes read linear and decoded).
+TEST_F(ResourceTest, ViewFormatsFollowTheTypelessFamilyRule) {
+  TEXTURE2D_DESC desc{4, 4, 1, 1, DXGI_FORMAT_R8G8B8A8_UNORM, {1, 0}, USAGE_DEFAULT,
+                      BIND_SHADER_RESOURCE | BIND_RENDER_TARGET, 0, 0};
+  ComPtr<Texture2D> typed;
+  ASSERT_EQ(device->CreateTexture2D(&desc, nullptr, typed.GetAddressOf()), S_OK);
+  SHADER_RESOURCE_VIEW_DESC srgb{};
+  srgb.Format = DXGI_FORMAT_R8G8B8A8_UNORM_SRGB;
+  srgb.ViewDimension = SRV_DIMENSION_TEXTURE2D;
+  srgb.Texture2D = {0, 1};
+  ComPtr<ShaderResourceView> view;
+  EXPECT_EQ(device->CreateShaderResourceView(typed.Get(), &srgb, view.GetAddressOf()), E_INVALIDARG);
+  EXPECT_TRUE(RefusedWith("cannot view a resource of format DXGI_FORMAT_R8G8B8A8_UNORM"))
+      << (Refusals().empty() ? "no refusal message" : Refusals().back());
+
+  desc.Format = DXGI_FORMAT_R8G8B8A8_TYPELESS;
+  ComPtr<Texture2D> typeless;
+  ASSERT_EQ(device->CreateTexture2D(&desc, nullptr, typeless.GetAddressOf()), S_OK);
+  RENDER_TARGET_VIEW_DESC linear{};
+  linear.Format = DXGI_FORMAT_R8G8B8A8_UNORM;
+  linear.ViewDimension = RTV_DIMENSION_TEXTURE2D;
+  ComPtr<RenderTargetView> rtv;
+  ASSERT_EQ(device->CreateRenderTargetView(typeless.Get(), &linear, rtv.GetAddressOf()), S_OK);
+  ASSERT_EQ(device->CreateShaderResourceView(typeless.Get(), &srgb, view.ReleaseAndGetAddressOf()), S_OK);
+  const FLOAT half[4] = {0.5f, 0.5f, 0.5f, 1.0f};  // stored as code 128 (127.5 rounds either way, FS 3.2.3.6)
+  context->ClearRenderTargetView(rtv.Get(), half);
+  Target out = MakeRenderTarget(4, 4, DXGI_FORMAT_R32G32B32A32_FLOAT);
+  auto ps = PS(R"(Texture2D t : register(t0);
+                  float4 main(float4 pos : SV_Position) : SV_Target { return t.Load(int3(pos.xy, 0)); })");
+  ShaderResourceView* srvs[] = {view.Get()};
+  context->PSSetShaderResources(0, 1, srvs);
+  FullScreen(out.rtv.Get(), 4, 4, ps.Get());
+  const std::vector<float> texels = [&] {
+    std::vector<uint8_t> bytes = ReadTexture(out.texture.Get());
+    std::vector<float> f(bytes.size() / 4);
+    std::memcpy(f.data(), bytes.data(), bytes.size());
+    return f;
+  }();
+  // sRGB decode of code 127 or 128: 0.2122 or 0.2159 (not the linear 0.5).
+  EXPECT_NEAR(texels[0], 0.214f, 0.003f);
+  EXPECT_FLOAT_EQ(texels[3], 1.0f);
+}
+
 TEST_F(ResourceTest, MapWriteDiscardOnDynamicConstantBufferGivesEachDrawItsOwnValue) {
   // Three draws between three WRITE_DISCARD maps of one constant buffer: each
   // draw must see the value mapped before it (the buffer is renamed), not the last.

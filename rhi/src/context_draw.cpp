@@ -322,9 +322,14 @@ void ContextImpl::PushDescriptors(VkPipelineBindPoint bindPoint, VkPipelineLayou
     write.dstBinding = binding.binding;
     write.descriptorCount = 1;
     write.descriptorType = binding.descriptorType;
-    write.pBufferInfo = &buffers[i];
-    write.pImageInfo = &images[i];
-    write.pTexelBufferView = &texelBuffers[i];
+    // Only the array the type reads: lavapipe copies every non-null one per push.
+    switch (binding.descriptorType) {
+      case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER:
+      case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER: write.pBufferInfo = &buffers[i]; break;
+      case VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER:
+      case VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER: write.pTexelBufferView = &texelBuffers[i]; break;
+      default: write.pImageInfo = &images[i]; break;
+    }
     buffers[i] = {VK_NULL_HANDLE, 0, VK_WHOLE_SIZE};
     images[i] = {VK_NULL_HANDLE, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL};
     texelBuffers[i] = VK_NULL_HANDLE;

@@ -370,8 +370,6 @@ std::unique_ptr<Gpu::Submission> Gpu::AcquireSubmission() {
   if (!idle_.empty()) {
     auto s = std::move(idle_.back());
     idle_.pop_back();
-    vkResetCommandPool(device_, s->pool, 0);
-    vkResetFences(device_, 1, &s->fence);
     return s;
   }
   auto s = std::make_unique<Submission>();
@@ -423,6 +421,12 @@ void Gpu::RetireCompleted() {
     completedSerial_ = done->serial;
     for (auto& destroy : done->destroyWhenDone) destroy();
     done->destroyWhenDone.clear();
+    // Recycled as soon as the GPU is done with it, not when it is next needed:
+    // the command memory goes back to the allocator while it is still warm
+    // (lavapipe allocates every recorded command), and the next recording
+    // reuses it from there.
+    vkResetCommandPool(device_, done->pool, 0);
+    vkResetFences(device_, 1, &done->fence);
     idle_.push_back(std::move(done));
   }
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "device.h"
+#include "pipelines.h"
 #include "resource_tracking.h"
 #include "rhi/shader_bindings.h"
 
@@ -34,8 +35,6 @@ class InputLayoutImpl;
 class ShaderCode;
 class QueryImpl;
 class QueryTracker;
-struct GraphicsPipeline;
-struct ComputePipeline;
 
 class ContextImpl final : public DeviceContext {
  public:
@@ -145,9 +144,14 @@ class ContextImpl final : public DeviceContext {
 
   // Records `use` of `resource`, adding the barrier it needs to the pending batch.
   // `attachmentInstance`: the rendering instance an attachment write happens in.
-  void Use(TrackedResource& resource, const Access& use, uint64_t attachmentInstance = 0);
+  void Use(TrackedResource& resource, const Access& use, uint64_t attachmentInstance = 0) {
+    resource.Use(use, attachmentInstance, &pendingBarrier_);
+    resource.lastUseSerial = device_->gpu().RecordingSerial();
+  }
   // Emits the pending barrier batch; ends rendering first when there is one.
-  void FlushBarriers();
+  void FlushBarriers() {
+    if (pendingBarrier_.srcStageMask != 0 || pendingBarrier_.dstStageMask != 0) EmitBarriers();
+  }
   // Ends the current rendering instance, if any (transfers and barriers need that).
   void EndRendering();
   VkCommandBuffer Commands() { return device_->gpu().Commands(); }
@@ -164,8 +168,8 @@ class ContextImpl final : public DeviceContext {
     UINT offset = 0;
   };
   struct StageState {
-    std::shared_ptr<const ShaderCode> shader;
-    Bound<Bindable> shaderObject;  // keeps the D3D object alive while bound
+    const ShaderCode* shader = nullptr;  // owned by the shader object
+    Bound<Bindable> shaderObject;        // keeps the D3D object (and its code) alive while bound
     std::array<Bound<BufferImpl>, COMMONSHADER_CONSTANT_BUFFER_API_SLOT_COUNT> constantBuffers;
     std::array<Bound<ShaderResourceViewImpl>, COMMONSHADER_INPUT_RESOURCE_SLOT_COUNT> shaderResources;
     std::array<Bound<SamplerStateImpl>, COMMONSHADER_SAMPLER_SLOT_COUNT> samplers;
@@ -176,10 +180,11 @@ class ContextImpl final : public DeviceContext {
     bool offsetPending = false;  // the next stream-out starts at `offset`, not at the counter
   };
 
-  void SetShader(ShaderStage stage, Bindable* object, std::shared_ptr<const ShaderCode> code);
+  void SetShader(ShaderStage stage, Bindable* object, const ShaderCode* code);
   void SetConstantBuffers(ShaderStage stage, UINT start, UINT count, Buffer* const* buffers);
   void SetShaderResources(ShaderStage stage, UINT start, UINT count, ShaderResourceView* const* views);
   void SetSamplers(ShaderStage stage, UINT start, UINT count, SamplerState* const* samplers);
+  void EmitBarriers();
   // D3D11's hazard rule: a resource bound for writing leaves every read binding.
   void UnbindFromReads(Resource* resource);
   bool IsBoundForWriting(Resource* resource) const;
@@ -189,8 +194,12 @@ class ContextImpl final : public DeviceContext {
   const GraphicsPipeline* PrepareDraw(const char* call, TrackedResource* indirect = nullptr,
                                       const Access& indirectUse = uses::kIndirectArgs);
   void TrackDrawResources(const GraphicsPipeline& pipeline, TrackedResource* indirect, const Access& indirectUse);
-  // Builds the pipeline key from the bound state and finds or builds the pipeline.
+  // Finds the pipeline of pipelineKey_, or builds it from the bound state.
   const GraphicsPipeline* LookUpPipeline(const char* call);
+  // The key's render-target formats and sample count, from the bound views.
+  void SetTargetsKey();
+  // A key setter changed the key: the current pipeline must be looked up again.
+  void PipelineStateChanged() { currentPipeline_ = nullptr; }
   void BeginRendering();
   void BindGraphicsState(const GraphicsPipeline& pipeline);
   void SetViewportsAndScissors();
@@ -238,8 +247,11 @@ class ContextImpl final : public DeviceContext {
       descriptorScratch_;
   bool renderTargetsChanged_ = true;
   const GraphicsPipeline* boundPipeline_ = nullptr;
-  // The pipeline of the current state; rebuilt from the key only after a
-  // setter that enters the key (shaders, layout, states, targets, topology).
+  // The pipeline key of the bound state, kept up to date by the setters that
+  // enter it (shaders, layout, states, targets, sample mask, topology), so a
+  // draw does not rebuild it.
+  GraphicsPipelineKey pipelineKey_ = DefaultPipelineKey();
+  // The pipeline of pipelineKey_; looked up again only after the key changed.
   const GraphicsPipeline* currentPipeline_ = nullptr;
   // Vulkan dynamic state that must be recorded again. It survives pipeline
   // binds (every pipeline declares it dynamic), except viewport and scissor,

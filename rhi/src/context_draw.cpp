@@ -32,24 +32,6 @@ VkPipelineStageFlags2 StageFlags(ShaderStage stage) {
   return VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
 }
 
-// Pipeline keys name state objects by serial; 0 stands for the D3D11 default.
-template <class T>
-uint64_t SerialOf(const Bound<T>& state) {
-  return state ? state->serial() : 0;
-}
-
-uint32_t TopologyClass(PRIMITIVE_TOPOLOGY topology) {
-  if (topology >= PRIMITIVE_TOPOLOGY_1_CONTROL_POINT_PATCHLIST) return 100 + (topology - 32);
-  switch (topology) {
-    case PRIMITIVE_TOPOLOGY_POINTLIST: return VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
-    case PRIMITIVE_TOPOLOGY_LINELIST:
-    case PRIMITIVE_TOPOLOGY_LINESTRIP:
-    case PRIMITIVE_TOPOLOGY_LINELIST_ADJ:
-    case PRIMITIVE_TOPOLOGY_LINESTRIP_ADJ: return VK_PRIMITIVE_TOPOLOGY_LINE_LIST;
-    default: return VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-  }
-}
-
 VkPrimitiveTopology ToVkTopology(PRIMITIVE_TOPOLOGY topology) {
   switch (topology) {
     case PRIMITIVE_TOPOLOGY_POINTLIST: return VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
@@ -156,48 +138,31 @@ const GraphicsPipeline* ContextImpl::PrepareDraw(const char* call, TrackedResour
 }
 
 const GraphicsPipeline* ContextImpl::LookUpPipeline(const char* call) {
-  GraphicsPipelineKey key;
+  PipelineCache& cache = device_->pipelines();
+  if (const GraphicsPipeline* pipeline = cache.FindGraphics(pipelineKey_)) return pipeline;
+  // A new combination: gather what the pipeline is built from.
   GraphicsPipelineInputs inputs;
-  for (size_t i = 0; i < kGraphicsStages.size(); ++i) {
-    const ShaderCode* code = stages_[static_cast<uint32_t>(kGraphicsStages[i])].shader.get();
-    key.shaders[i] = code ? code->serial : 0;
-    inputs.shaders[i] = code;
-  }
-  key.inputLayout = inputLayout_ ? inputLayout_->serial() : 0;
+  for (size_t i = 0; i < kGraphicsStages.size(); ++i) inputs.shaders[i] = stages_[static_cast<uint32_t>(kGraphicsStages[i])].shader;
   inputs.inputLayout = inputLayout_.Get();
-  key.blend = SerialOf(blendState_);
-  key.depthStencil = SerialOf(depthStencilState_);
-  key.rasterizer = SerialOf(rasterizer_);
   inputs.blend = &BlendDescOf(blendState_.Get());
   inputs.depthStencil = &DepthStencilDescOf(depthStencilState_.Get());
   inputs.rasterizer = &RasterizerDescOf(rasterizer_.Get());
-  for (uint32_t i = 0; i < renderTargets_.size(); ++i) {
-    if (!renderTargets_[i]) continue;
-    inputs.colorFormats[i] = renderTargets_[i]->format();
-    key.colorFormats[i] = inputs.colorFormats[i];
-    inputs.samples = renderTargets_[i]->texture().shape().samples;
-  }
-  if (depthStencil_) {
-    inputs.depthFormat = depthStencil_->texture().shape().format;
-    inputs.samples = depthStencil_->texture().shape().samples;
-  }
-  key.depthFormat = inputs.depthFormat;
-  key.samples = inputs.samples;
-  key.sampleMask = inputs.sampleMask = sampleMask_;
+  for (uint32_t i = 0; i < renderTargets_.size(); ++i)
+    inputs.colorFormats[i] = static_cast<DXGI_FORMAT>(pipelineKey_.colorFormats[i]);
+  inputs.depthFormat = static_cast<DXGI_FORMAT>(pipelineKey_.depthFormat);
+  inputs.samples = pipelineKey_.samples;
+  inputs.sampleMask = sampleMask_;
   inputs.topology = topology_;
-  key.topologyClass = TopologyClass(topology_);
-
   std::string error;
-  const GraphicsPipeline* pipeline = device_->pipelines().Graphics(key, inputs, &error);
+  const GraphicsPipeline* pipeline = cache.Graphics(pipelineKey_, inputs, &error);
   if (!pipeline) ReportDrawError(std::string(call) + ": " + error + "; the draw is skipped");
   return pipeline;
 }
 
 void ContextImpl::TrackDrawResources(const GraphicsPipeline& pipeline, TrackedResource* indirect,
                                      const Access& indirectUse) {
-  for (uint32_t slot = 0; slot < vertexBuffers_.size(); ++slot)
-    if ((pipeline.vertexSlots >> slot & 1) && vertexBuffers_[slot].buffer)
-      Use(*vertexBuffers_[slot].buffer, uses::kVertexBuffer);
+  for (uint32_t slots = pipeline.vertexSlots; slots; slots &= slots - 1)
+    if (BufferImpl* buffer = vertexBuffers_[std::countr_zero(slots)].buffer.Get()) Use(*buffer, uses::kVertexBuffer);
   if (indexBuffer_.buffer) Use(*indexBuffer_.buffer, uses::kIndexBuffer);
   if (indirect) Use(*indirect, indirectUse);
   for (const VkDescriptorSetLayoutBinding& binding : pipeline.layout->bindings) {
@@ -444,7 +409,7 @@ void ContextImpl::DrawIndexedInstancedIndirect(Buffer* pBufferForArgs, UINT Alig
 // Compute
 
 const ComputePipeline* ContextImpl::PrepareDispatch(const char* call) {
-  const ShaderCode* shader = stages_[static_cast<uint32_t>(ShaderStage::Compute)].shader.get();
+  const ShaderCode* shader = stages_[static_cast<uint32_t>(ShaderStage::Compute)].shader;
   if (!shader) {
     ReportDrawError(std::string(call) + ": no compute shader is bound; the dispatch is skipped");
     return nullptr;

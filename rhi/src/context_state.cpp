@@ -24,8 +24,11 @@ ContextImpl::~ContextImpl() {
 }
 
 void ContextImpl::IASetInputLayout(InputLayout* pInputLayout) {
-  inputLayout_ = static_cast<InputLayoutImpl*>(pInputLayout);
-  currentPipeline_ = nullptr;
+  auto* layout = static_cast<InputLayoutImpl*>(pInputLayout);
+  if (layout == inputLayout_.Get()) return;
+  inputLayout_ = layout;
+  pipelineKey_.inputLayout = layout ? layout->serial() : 0;
+  PipelineStateChanged();
 }
 
 void ContextImpl::IASetVertexBuffers(UINT StartSlot, UINT NumBuffers, Buffer* const* ppVertexBuffers,
@@ -51,24 +54,30 @@ void ContextImpl::IASetIndexBuffer(Buffer* pIndexBuffer, DXGI_FORMAT Format, UIN
 }
 
 void ContextImpl::IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY Topology) {
+  if (Topology == topology_) return;
   topology_ = Topology;
-  currentPipeline_ = nullptr;
+  pipelineKey_.topologyClass = TopologyClass(Topology);
+  PipelineStateChanged();
   dynamicDirty_.topology = true;
 }
 
-void ContextImpl::SetShader(ShaderStage stage, Bindable* object, std::shared_ptr<const ShaderCode> code) {
+void ContextImpl::SetShader(ShaderStage stage, Bindable* object, const ShaderCode* code) {
   StageState& state = stages_[static_cast<uint32_t>(stage)];
+  if (object == state.shaderObject.Get()) return;
   state.shaderObject = object;
-  state.shader = std::move(code);
-  currentPipeline_ = nullptr;
+  state.shader = code;
   descriptorsDirty_ = true;
+  if (stage == ShaderStage::Compute) return;
+  // The key's shader slots are VS, HS, DS, GS, PS: the graphics stages in ShaderStage order.
+  pipelineKey_.shaders[static_cast<uint32_t>(stage)] = code ? code->serial : 0;
+  PipelineStateChanged();
 }
 
 // Each interface has one implementation, so a static_cast finds the code.
 #define RHI_SET_SHADER(Prefix, Stage, Interface)                                          \
   void ContextImpl::Prefix##SetShader(Interface* pShader, ClassInstance* const*, UINT) {  \
     auto* object = static_cast<ShaderObject<Interface>*>(pShader);                        \
-    SetShader(ShaderStage::Stage, object, object ? object->code() : nullptr);             \
+    SetShader(ShaderStage::Stage, object, object ? object->code().get() : nullptr);       \
   }
 RHI_SET_SHADER(VS, Vertex, VertexShader)
 RHI_SET_SHADER(HS, Hull, HullShader)
@@ -137,8 +146,11 @@ void ContextImpl::SOGetTargets(UINT NumBuffers, Buffer** ppSOTargets) {
 }
 
 void ContextImpl::RSSetState(RasterizerState* pRasterizerState) {
-  rasterizer_ = static_cast<RasterizerStateImpl*>(pRasterizerState);
-  currentPipeline_ = nullptr;
+  auto* state = static_cast<RasterizerStateImpl*>(pRasterizerState);
+  if (state == rasterizer_.Get()) return;
+  rasterizer_ = state;
+  pipelineKey_.rasterizer = state ? state->serial() : 0;
+  PipelineStateChanged();
   dynamicDirty_.viewport = true;  // ScissorEnable decides the scissor
 }
 
@@ -163,25 +175,46 @@ void ContextImpl::OMSetRenderTargets(UINT NumViews, RenderTargetView* const* ppR
   auto* depth = static_cast<DepthStencilViewImpl*>(pDepthStencilView);
   if (depth) UnbindFromReads(depth->resource());
   depthStencil_ = depth;
-  currentPipeline_ = nullptr;
+  SetTargetsKey();
   renderTargetsChanged_ = true;
 }
 
+void ContextImpl::SetTargetsKey() {
+  GraphicsPipelineKey& key = pipelineKey_;
+  key.samples = 1;
+  for (uint32_t i = 0; i < renderTargets_.size(); ++i) {
+    key.colorFormats[i] = renderTargets_[i] ? renderTargets_[i]->format() : DXGI_FORMAT_UNKNOWN;
+    if (renderTargets_[i]) key.samples = renderTargets_[i]->texture().shape().samples;
+  }
+  key.depthFormat = depthStencil_ ? depthStencil_->texture().shape().format : DXGI_FORMAT_UNKNOWN;
+  if (depthStencil_) key.samples = depthStencil_->texture().shape().samples;
+  PipelineStateChanged();
+}
+
 void ContextImpl::OMSetBlendState(BlendState* pBlendState, const FLOAT BlendFactor[4], UINT SampleMask) {
-  blendState_ = static_cast<BlendStateImpl*>(pBlendState);
-  currentPipeline_ = nullptr;
+  auto* state = static_cast<BlendStateImpl*>(pBlendState);
+  if (state != blendState_.Get() || SampleMask != sampleMask_) {
+    blendState_ = state;
+    sampleMask_ = SampleMask;
+    pipelineKey_.blend = state ? state->serial() : 0;
+    pipelineKey_.sampleMask = SampleMask;
+    PipelineStateChanged();
+  }
   // D3D11: a NULL factor means (1,1,1,1).
   if (BlendFactor)
     std::copy(BlendFactor, BlendFactor + 4, blendFactor_.begin());
   else
     blendFactor_ = {1, 1, 1, 1};
-  sampleMask_ = SampleMask;
   dynamicDirty_.blendConstants = true;
 }
 
 void ContextImpl::OMSetDepthStencilState(DepthStencilState* pDepthStencilState, UINT StencilRef) {
-  depthStencilState_ = static_cast<DepthStencilStateImpl*>(pDepthStencilState);
-  currentPipeline_ = nullptr;
+  auto* state = static_cast<DepthStencilStateImpl*>(pDepthStencilState);
+  if (state != depthStencilState_.Get()) {
+    depthStencilState_ = state;
+    pipelineKey_.depthStencil = state ? state->serial() : 0;
+    PipelineStateChanged();
+  }
   stencilRef_ = StencilRef;
   dynamicDirty_.stencilRef = true;
 }
@@ -216,7 +249,8 @@ void ContextImpl::UnbindFromReads(Resource* resource) {
 
 void ContextImpl::ClearState() {
   inputLayout_.Reset();
-  currentPipeline_ = nullptr;
+  pipelineKey_ = DefaultPipelineKey();
+  PipelineStateChanged();
   vertexBuffers_ = {};
   indexBuffer_ = {};
   topology_ = PRIMITIVE_TOPOLOGY_UNDEFINED;

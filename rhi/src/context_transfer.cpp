@@ -44,13 +44,7 @@ void ContextImpl::InitializeImageLayout(TextureStorage& texture) {
   vkCmdPipelineBarrier2(Commands(), &dependency);
 }
 
-void ContextImpl::Use(TrackedResource& resource, const Access& use, uint64_t attachmentInstance) {
-  resource.Use(use, attachmentInstance, &pendingBarrier_);
-  resource.lastUseSerial = device_->gpu().RecordingSerial();
-}
-
-void ContextImpl::FlushBarriers() {
-  if (pendingBarrier_.srcStageMask == 0 && pendingBarrier_.dstStageMask == 0) return;
+void ContextImpl::EmitBarriers() {
   EndRendering();
   VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
   dependency.memoryBarrierCount = 1;

@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 #include <unordered_map>
+#include <utility>
 
 #include "gpu.h"
 #include "host_slices.h"
@@ -87,14 +88,23 @@ class DeviceImpl final : public Device {
 };
 
 // What the context's bindings hold on an object: it stays alive while bound,
-// as in D3D11, without the binding keeping the device alive.
+// as in D3D11, without the binding keeping the device alive. Binding and
+// unbinding are non-virtual counter updates: the context does them on every
+// binding call.
 class Bindable {
  public:
-  virtual void Bind() = 0;
-  virtual void Unbind() = 0;
+  void Bind() { ++bindings_; }
+  void Unbind() {
+    if (--bindings_ == 0 && references_ == 0) Destroy();
+  }
 
  protected:
   ~Bindable() = default;
+  // Deletes the object once neither the application nor a binding holds it.
+  virtual void Destroy() = 0;
+
+  UINT references_ = 1;  // the application's references
+  UINT bindings_ = 0;    // the context's bindings
 };
 
 // D3D11's lifetime rules for device children: an object lives while the
@@ -121,10 +131,6 @@ class DeviceChildImpl : public Interface, public Bindable {
     }
     return left;
   }
-  void Bind() override { ++bindings_; }
-  void Unbind() override {
-    if (--bindings_ == 0 && references_ == 0) delete this;
-  }
   void GetDevice(Device** ppDevice) override {
     device_->AddRef();
     *ppDevice = device_;
@@ -134,11 +140,12 @@ class DeviceChildImpl : public Interface, public Bindable {
   // Unique for the device's lifetime: pipeline keys use it instead of pointers.
   uint64_t serial() const { return serial_; }
 
+ protected:
+  void Destroy() override { delete this; }
+
  private:
   DeviceImpl* device_;
   uint64_t serial_;
-  UINT references_ = 1;
-  UINT bindings_ = 0;
 };
 
 // A context binding (see Bindable).
@@ -150,9 +157,21 @@ class Bound {
     if (object_) object_->Bind();
   }
   Bound(const Bound& other) : Bound(other.object_) {}
-  Bound& operator=(const Bound& other) {
-    Bound copy(other);
-    std::swap(object_, copy.object_);
+  Bound(Bound&& other) noexcept : object_(std::exchange(other.object_, nullptr)) {}
+  Bound& operator=(const Bound& other) { return *this = other.object_; }
+  Bound& operator=(Bound&& other) noexcept {
+    if (this != &other) {
+      Reset();
+      object_ = std::exchange(other.object_, nullptr);
+    }
+    return *this;
+  }
+  // Binds `object` in place of the current one; rebinding the same object is free.
+  Bound& operator=(T* object) {
+    if (object == object_) return *this;
+    if (object) object->Bind();
+    Reset();
+    object_ = object;
     return *this;
   }
   ~Bound() { Reset(); }

@@ -387,14 +387,12 @@ std::unique_ptr<Gpu::Submission> Gpu::AcquireSubmission() {
   return s;
 }
 
-VkCommandBuffer Gpu::Commands() {
-  if (!recording_) {
-    recording_ = AcquireSubmission();
-    recording_->serial = recordingSerial_;
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    vkBeginCommandBuffer(recording_->commands, &begin);
-  }
+VkCommandBuffer Gpu::BeginCommands() {
+  recording_ = AcquireSubmission();
+  recording_->serial = recordingSerial_;
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  vkBeginCommandBuffer(recording_->commands, &begin);
   return recording_->commands;
 }
 

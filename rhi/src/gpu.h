@@ -65,7 +65,7 @@ class Gpu {
 
   // Submission. Commands are recorded into the current command buffer; each
   // submission gets a serial, and resources remember the serial of their last use.
-  VkCommandBuffer Commands();
+  VkCommandBuffer Commands() { return recording_ ? recording_->commands : BeginCommands(); }
   uint64_t RecordingSerial() const { return recordingSerial_; }
   bool HasPendingCommands() const { return recording_ != nullptr; }
   void Submit();
@@ -106,6 +106,8 @@ class Gpu {
   void LoadDebugLabelEntryPoints();  // context_annotations.cpp
   void RetireCompleted();
   std::unique_ptr<Submission> AcquireSubmission();
+  // Starts recording into a recycled or new command buffer.
+  VkCommandBuffer BeginCommands();
 
   VkInstance instance_ = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;

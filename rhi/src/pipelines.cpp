@@ -25,25 +25,55 @@ static_assert(std::has_unique_object_representations_v<GraphicsPipelineKey>,
 
 static_assert(sizeof(GraphicsPipelineKey) % sizeof(uint64_t) == 0);
 
+namespace {
+
+constexpr size_t kKeyWords = sizeof(GraphicsPipelineKey) / sizeof(uint64_t);
+
+// One odd multiplier per key word (splitmix64 of the word index).
+constexpr std::array<uint64_t, kKeyWords> kKeyWordMultipliers = [] {
+  std::array<uint64_t, kKeyWords> multipliers{};
+  for (size_t i = 0; i < kKeyWords; ++i) {
+    uint64_t z = (i + 1) * 0x9E3779B97F4A7C15ull;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    multipliers[i] = (z ^ (z >> 31)) | 1;
+  }
+  return multipliers;
+}();
+
+}  // namespace
+
 size_t GraphicsPipelineKeyHash::operator()(const GraphicsPipelineKey& key) const {
-  // Word at a time: the key is padding-free and 8-byte aligned.
-  uint64_t words[sizeof key / sizeof(uint64_t)];
+  // Word at a time (the key is padding-free and 8-byte aligned), each word
+  // multiplied independently so the products do not wait on each other (a
+  // lookup per pipeline change is on the draw path), then one final mix.
+  uint64_t words[kKeyWords];
   std::memcpy(words, &key, sizeof key);
   uint64_t hash = 0;
-  for (uint64_t word : words) {
-    hash = (hash ^ word) * 0x9E3779B97F4A7C15ull;
-    hash ^= hash >> 29;
-  }
+  for (size_t i = 0; i < kKeyWords; ++i) hash += words[i] * kKeyWordMultipliers[i];
+  hash ^= hash >> 32;
+  hash *= 0xD6E8FEB86659FD93ull;
+  hash ^= hash >> 32;
   return static_cast<size_t>(hash);
 }
 
-RegisterSlot RegisterOfBinding(uint32_t binding) {
-  const auto stage = static_cast<ShaderStage>(binding / kStageStride);
-  const uint32_t offset = binding % kStageStride;
-  if (offset >= kUnorderedAccessBase) return {stage, RegisterClass::UnorderedAccess, offset - kUnorderedAccessBase};
-  if (offset >= kSamplerBase) return {stage, RegisterClass::Sampler, offset - kSamplerBase};
-  if (offset >= kShaderResourceBase) return {stage, RegisterClass::ShaderResource, offset - kShaderResourceBase};
-  return {stage, RegisterClass::ConstantBuffer, offset};
+GraphicsPipelineKey DefaultPipelineKey() {
+  GraphicsPipelineKey key;
+  key.sampleMask = DEFAULT_SAMPLE_MASK;
+  key.topologyClass = TopologyClass(PRIMITIVE_TOPOLOGY_UNDEFINED);
+  return key;
+}
+
+uint32_t TopologyClass(PRIMITIVE_TOPOLOGY topology) {
+  if (topology >= PRIMITIVE_TOPOLOGY_1_CONTROL_POINT_PATCHLIST) return 100 + (topology - 32);
+  switch (topology) {
+    case PRIMITIVE_TOPOLOGY_POINTLIST: return VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
+    case PRIMITIVE_TOPOLOGY_LINELIST:
+    case PRIMITIVE_TOPOLOGY_LINESTRIP:
+    case PRIMITIVE_TOPOLOGY_LINELIST_ADJ:
+    case PRIMITIVE_TOPOLOGY_LINESTRIP_ADJ: return VK_PRIMITIVE_TOPOLOGY_LINE_LIST;
+    default: return VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  }
 }
 
 PipelineCache::PipelineCache(Gpu& gpu) : gpu_(gpu) {}
@@ -236,6 +266,15 @@ const ComputePipeline& PipelineCache::DrawAutoArgs() {
   vkCreateComputePipelines(gpu_.Device(), VK_NULL_HANDLE, 1, &info, nullptr, &drawAutoArgs_->pipeline);
   vkDestroyShaderModule(gpu_.Device(), module, nullptr);
   return *drawAutoArgs_;
+}
+
+const GraphicsPipeline* PipelineCache::FindGraphics(const GraphicsPipelineKey& key) {
+  RecentGraphics& recent = recentGraphics_[GraphicsPipelineKeyHash{}(key) % recentGraphics_.size()];
+  if (recent.pipeline && recent.key == key) return recent.pipeline;
+  auto it = graphics_.find(key);
+  if (it == graphics_.end()) return nullptr;
+  recent = {key, it->second.get()};
+  return recent.pipeline;
 }
 
 const GraphicsPipeline* PipelineCache::Graphics(const GraphicsPipelineKey& key, const GraphicsPipelineInputs& inputs,

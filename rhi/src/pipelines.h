@@ -35,6 +35,11 @@ struct GraphicsPipelineKeyHash {
   size_t operator()(const GraphicsPipelineKey& key) const;
 };
 
+// The key of the D3D11 default state (as after ClearState).
+GraphicsPipelineKey DefaultPipelineKey();
+// The key's topologyClass: topologies Vulkan switches dynamically share a pipeline.
+uint32_t TopologyClass(PRIMITIVE_TOPOLOGY topology);
+
 struct PipelineLayout {
   VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
   VkPipelineLayout layout = VK_NULL_HANDLE;
@@ -73,7 +78,10 @@ class PipelineCache {
   explicit PipelineCache(Gpu& gpu);
   ~PipelineCache();
 
-  // Null with `error` set when the state cannot form a pipeline (a D3D11 draw-time error).
+  // The pipeline built for `key`, or null if none was yet.
+  const GraphicsPipeline* FindGraphics(const GraphicsPipelineKey& key);
+  // Finds or builds the pipeline. Null with `error` set when the state cannot
+  // form a pipeline (a D3D11 draw-time error).
   const GraphicsPipeline* Graphics(const GraphicsPipelineKey& key, const GraphicsPipelineInputs& inputs,
                                    std::string* error);
   const ComputePipeline* Compute(const ShaderCode& shader, std::string* error);
@@ -88,6 +96,14 @@ class PipelineCache {
 
   Gpu& gpu_;
   std::unordered_map<GraphicsPipelineKey, std::unique_ptr<GraphicsPipeline>, GraphicsPipelineKeyHash> graphics_;
+  // Recently found pipelines, direct-mapped by key hash, in front of graphics_:
+  // draws look up a key on every pipeline change, and the map's prime bucket
+  // count costs a 64-bit division per find. Pipelines live as long as the cache.
+  struct RecentGraphics {
+    GraphicsPipelineKey key;
+    const GraphicsPipeline* pipeline = nullptr;
+  };
+  std::array<RecentGraphics, 64> recentGraphics_{};
   std::unordered_map<uint64_t, std::unique_ptr<ComputePipeline>> compute_;
   std::unordered_map<std::string, std::unique_ptr<PipelineLayout>> layouts_;
   std::unique_ptr<ComputePipeline> drawAutoArgs_;
@@ -99,6 +115,14 @@ struct RegisterSlot {
   RegisterClass registerClass;
   uint32_t slot;
 };
-RegisterSlot RegisterOfBinding(uint32_t binding);
+// Inline: the draw path decodes every binding of the layout per draw.
+inline RegisterSlot RegisterOfBinding(uint32_t binding) {
+  const auto stage = static_cast<ShaderStage>(binding / kStageStride);
+  const uint32_t offset = binding % kStageStride;
+  if (offset >= kUnorderedAccessBase) return {stage, RegisterClass::UnorderedAccess, offset - kUnorderedAccessBase};
+  if (offset >= kSamplerBase) return {stage, RegisterClass::Sampler, offset - kSamplerBase};
+  if (offset >= kShaderResourceBase) return {stage, RegisterClass::ShaderResource, offset - kShaderResourceBase};
+  return {stage, RegisterClass::ConstantBuffer, offset};
+}
 
 }  // namespace rhi::vk

@@ -19,15 +19,36 @@ struct Access {
   bool write = false;
 };
 
+// The access bits of a use that are writes (what a later use must wait for).
+inline constexpr VkAccessFlags2 kWriteAccess =
+    VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT |
+    VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_HOST_WRITE_BIT |
+    VK_ACCESS_2_TRANSFORM_FEEDBACK_WRITE_BIT_EXT | VK_ACCESS_2_TRANSFORM_FEEDBACK_COUNTER_WRITE_BIT_EXT;
+
 class TrackedResource {
  public:
   // Records `use` and adds to `barrier` what must be waited for before it.
   // `renderingInstance` is non-zero for attachment writes: attachment writes
   // within one rendering instance are ordered by the rasterizer, not barriers.
-  void Use(const Access& use, uint64_t renderingInstance, VkMemoryBarrier2* barrier);
+  void Use(const Access& use, uint64_t renderingInstance, VkMemoryBarrier2* barrier) {
+    // Inline: draws repeat uses that change nothing (a read already made
+    // visible since the last write, another attachment write in the same
+    // rendering instance); only the others take the full path.
+    if (!use.write ? IsVisibleTo(use) : IsSameAttachmentWrite(use, renderingInstance)) return;
+    Record(use, renderingInstance, barrier);
+  }
   uint64_t lastUseSerial = 0;
 
  private:
+  bool IsVisibleTo(const Access& read) const {
+    return (readStagesSinceWrite_ & read.stages) == read.stages && (readAccessSinceWrite_ & read.access) == read.access;
+  }
+  bool IsSameAttachmentWrite(const Access& write, uint64_t renderingInstance) const {
+    return renderingInstance != 0 && renderingInstance == writeRenderingInstance_ && write.stages == writeStages_ &&
+           (write.access & kWriteAccess) == writeAccess_ && readStagesSinceWrite_ == 0;
+  }
+  void Record(const Access& use, uint64_t renderingInstance, VkMemoryBarrier2* barrier);
+
   VkPipelineStageFlags2 writeStages_ = 0;
   VkAccessFlags2 writeAccess_ = 0;
   VkPipelineStageFlags2 readStagesSinceWrite_ = 0;

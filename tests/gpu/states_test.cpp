@@ -353,6 +353,37 @@ TEST_F(StateTest, BlendFactorFromOMSetBlendStateIsUsedAndUpdatedPerDraw) {
             Rows(8, "11112222"));
 }
 
+TEST_F(StateTest, EachDrawUsesThePipelineOfItsStateAcrossRebindsAndTargetChanges) {
+  // The backend keeps the pipeline key up to date in the setters and looks
+  // pipelines up through a table of recent keys: a state bound again (the
+  // third draw), a target of another format in between, and a target bound
+  // back must each draw with their own pipeline (a pipeline built for another
+  // colour format would also be a validation error).
+  // Factor blending of red over blue, F = (0.25, 0.5, 0.125, 0.5): (64, 0, 223, 255) '1'; opaque red '2'.
+  Clear(target_.rtv.Get(), {0, 0, 1, 1});
+  BLEND_DESC desc;
+  auto& rt = desc.RenderTarget[0];
+  rt.BlendEnable = TRUE;
+  rt.SrcBlend = rt.SrcBlendAlpha = BLEND_BLEND_FACTOR;
+  rt.DestBlend = rt.DestBlendAlpha = BLEND_INV_BLEND_FACTOR;
+  auto byFactor = Blend(desc);
+  const FLOAT factor[4] = {0.25f, 0.5f, 0.125f, 0.5f};
+  context->OMSetBlendState(byFactor.Get(), factor, DEFAULT_SAMPLE_MASK);
+  DrawVertices(Quad(0, 0, 2, 8, kRed, 8, 8));
+  context->OMSetBlendState(nullptr, nullptr, DEFAULT_SAMPLE_MASK);
+  DrawVertices(Quad(2, 0, 4, 8, kRed, 8, 8));
+  context->OMSetBlendState(byFactor.Get(), factor, DEFAULT_SAMPLE_MASK);
+  DrawVertices(Quad(4, 0, 6, 8, kRed, 8, 8));
+  Target half = MakeRenderTarget(8, 8, DXGI_FORMAT_R16G16B16A16_FLOAT);
+  BindTarget(half.rtv.Get(), 8, 8);
+  DrawVertices(Quad(0, 0, 8, 8, kRed, 8, 8));
+  BindTarget(target_.rtv.Get(), 8, 8);
+  context->OMSetBlendState(nullptr, nullptr, DEFAULT_SAMPLE_MASK);
+  DrawVertices(Quad(6, 0, 8, 8, kRed, 8, 8));
+  EXPECT_EQ(Picture(Pixels(), 8, 8, {{RGBA(64, 0, 223, 255), '1'}, {RGBA(255, 0, 0, 255), '2'}}),
+            Rows(8, "11221122"));
+}
+
 TEST_F(StateTest, NullBlendStateIsDefaultNoBlending) {
   Clear(target_.rtv.Get(), {0, 0, 1, 1});
   BLEND_DESC desc;

@@ -262,7 +262,7 @@ void BM_RawVulkanDraw(benchmark::State& state) {
 }
 
 // Diagnostic, not the baseline: raw Vulkan that re-sets viewport, scissor,
-// topology and primitive restart after every pipeline bind, as the RHI does.
+// topology and primitive restart after every pipeline bind, as the RHI did before 538b266.
 void BM_RawVulkanDrawReemit(benchmark::State& state) {
   RawVulkan& raw = Raw();
   MeasureBatches(state, [&] { raw.RecordBatch(kDrawsPerBatch, true); }, [&] { raw.SubmitAndWait(); });

@@ -257,6 +257,7 @@ void RawVulkan::CreateResources() {
   Check(vkQueueSubmit2(queue_, 1, &submit, fence_), "vkQueueSubmit2");
   Check(vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
   Check(vkResetFences(device_, 1, &fence_), "vkResetFences");
+  Check(vkResetCommandPool(device_, pool_, 0), "vkResetCommandPool");  // the batches begin it again
 }
 
 void RawVulkan::CreatePipelines(const SceneShaders& shaders) {

@@ -5,8 +5,6 @@
 
 #include <algorithm>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 #include <vector>
 
 #include "hlsl/hlsl_compiler.h"
@@ -44,19 +42,7 @@ BackendData* GetBackendData() {
 }
 
 bool Compile(const char* entry, const char* profile, std::vector<uint32_t>* spirv, std::string* error) {
-  std::ifstream file(kShaderPath, std::ios::binary);
-  if (!file) {
-    *error = std::string(kShaderPath) + ": cannot open";
-    return false;
-  }
-  std::stringstream text;
-  text << file.rdbuf();
-  hlsl::CompileRequest request;
-  request.source = text.str();
-  request.fileName = kShaderPath;
-  request.entryPoint = entry;
-  request.profile = profile;
-  hlsl::CompileResult result = hlsl::CompileHlsl(request);
+  hlsl::CompileResult result = hlsl::CompileHlslFile(kShaderPath, entry, profile);
   if (!result.ok) {
     *error = result.FormatErrors();
     return false;

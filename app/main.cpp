@@ -32,8 +32,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -69,21 +67,8 @@ int gErrorMessages = 0;  // RHI error messages (refusals, validation errors) see
 // ---------------------------------------------------------------------------
 // Shaders: read from shaders_hlsl/ at runtime, compiled in-process.
 
-std::string ReadFile(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) Fail("cannot read " + path);
-  std::stringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
 std::vector<uint32_t> Compile(const std::string& path, const char* entry, const char* profile) {
-  hlsl::CompileRequest request;
-  request.source = ReadFile(path);
-  request.fileName = path;
-  request.entryPoint = entry;
-  request.profile = profile;
-  hlsl::CompileResult result = hlsl::CompileHlsl(request);
+  hlsl::CompileResult result = hlsl::CompileHlslFile(path, entry, profile);
   if (!result.ok) {
     // FormatErrors gives "file:line:column: error: message" lines.
     std::fprintf(stderr, "%s", result.FormatErrors().c_str());

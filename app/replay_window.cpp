@@ -51,10 +51,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -135,20 +133,8 @@ bool ParseOptions(int argc, char** argv, Options* o, std::string* error) {
 }
 
 bool Compile(const char* entry, const char* profile, std::vector<uint32_t>* spirv) {
-  const std::string path = PROJECT_SOURCE_ROOT "/shaders_hlsl/imgui.hlsl";
-  std::ifstream file(path, std::ios::binary);
-  if (!file) {
-    std::fprintf(stderr, "replay: cannot read %s\n", path.c_str());
-    return false;
-  }
-  std::stringstream text;
-  text << file.rdbuf();
-  hlsl::CompileRequest request;
-  request.source = text.str();
-  request.fileName = path;
-  request.entryPoint = entry;
-  request.profile = profile;
-  hlsl::CompileResult result = hlsl::CompileHlsl(request);
+  hlsl::CompileResult result =
+      hlsl::CompileHlslFile(PROJECT_SOURCE_ROOT "/shaders_hlsl/imgui.hlsl", entry, profile);
   if (!result.ok) {
     std::fprintf(stderr, "%s", result.FormatErrors().c_str());
     return false;

@@ -248,16 +248,7 @@ void RawVulkan::CreateResources() {
   dependency.imageMemoryBarrierCount = 1;
   dependency.pImageMemoryBarriers = &barrier;
   vkCmdPipelineBarrier2(commands_, &dependency);
-  Check(vkEndCommandBuffer(commands_), "vkEndCommandBuffer");
-  VkCommandBufferSubmitInfo commandInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
-  commandInfo.commandBuffer = commands_;
-  VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
-  submit.commandBufferInfoCount = 1;
-  submit.pCommandBufferInfos = &commandInfo;
-  Check(vkQueueSubmit2(queue_, 1, &submit, fence_), "vkQueueSubmit2");
-  Check(vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
-  Check(vkResetFences(device_, 1, &fence_), "vkResetFences");
-  Check(vkResetCommandPool(device_, pool_, 0), "vkResetCommandPool");  // the batches begin it again
+  EndSubmitAndWait();
 }
 
 void RawVulkan::CreatePipelines(const SceneShaders& shaders) {
@@ -442,6 +433,10 @@ void RawVulkan::Record(int draws, bool reemitDynamicState) {
 
 void RawVulkan::SubmitAndWait() {
   vkCmdEndRendering(commands_);
+  EndSubmitAndWait();
+}
+
+void RawVulkan::EndSubmitAndWait() {
   Check(vkEndCommandBuffer(commands_), "vkEndCommandBuffer");
   VkCommandBufferSubmitInfo commandInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
   commandInfo.commandBuffer = commands_;

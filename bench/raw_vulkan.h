@@ -45,6 +45,8 @@ class RawVulkan {
   VkBuffer CreateHostBuffer(VkBufferUsageFlags usage, const void* data, VkDeviceSize size, VkDeviceMemory* memory);
   uint32_t FindMemoryType(uint32_t typeBits, VkMemoryPropertyFlags flags) const;
   void SetPassState(VkCommandBuffer commands);
+  // Ends, submits and waits for the command buffer, then resets its pool.
+  void EndSubmitAndWait();
   void Record(int draws, bool reemitDynamicState);
 
   VkInstance instance_ = VK_NULL_HANDLE;

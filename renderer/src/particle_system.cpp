@@ -2,8 +2,6 @@
 
 #include <cmath>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 #include <vector>
 
 #include "hlsl/hlsl_compiler.h"
@@ -40,16 +38,7 @@ struct DrawParams {
 
 bool Compile(const char* file, const char* entry, const char* profile, std::vector<uint32_t>* spirv,
              std::string* error) {
-  const std::string path = kShaderDir + "/" + file;
-  std::ifstream stream(path);
-  if (!stream) {
-    *error = path + ": cannot open";
-    return false;
-  }
-  std::stringstream text;
-  text << stream.rdbuf();
-  hlsl::CompileRequest request{text.str(), path, entry, profile, {}, {kShaderDir}};
-  hlsl::CompileResult result = hlsl::CompileHlsl(request);
+  hlsl::CompileResult result = hlsl::CompileHlslFile(kShaderDir + "/" + file, entry, profile, {kShaderDir});
   if (!result.ok) {
     *error = result.FormatErrors();
     return false;

@@ -686,6 +686,20 @@ TEST(HlslPreprocessor, MissingIncludeIsAClearError) {
   EXPECT_NE(r.errors[0].message.find("does_not_exist.h"), std::string::npos) << r.errors[0].message;
 }
 
+TEST(HlslCompileFile, ReadsTheFileResolvesIncludesAndNamesAMissingFile) {
+  TempDir dir;
+  dir.Write("colour.h", "#define COLOUR float4(1, 0, 0, 1)\n");
+  const fs::path main = dir.Write("main.hlsl", "#include \"colour.h\"\nfloat4 main() : SV_Target { return COLOUR; }\n");
+  const CompileResult ok = hlsl::CompileHlslFile(main.string(), "main", "ps_5_0");
+  EXPECT_TRUE(ok.ok) << ok.FormatErrors();
+  EXPECT_FALSE(ok.spirv.empty());
+
+  const std::string missing = (dir.path() / "missing.hlsl").string();
+  const CompileResult r = hlsl::CompileHlslFile(missing, "main", "ps_5_0");
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.FormatErrors(), missing + ": error: cannot read the file\n");
+}
+
 TEST(HlslPreprocessor, DefinesAreApplied) {
   constexpr char source[] = R"(
 #if !defined(USE_COLOR) || BRIGHTNESS != 3

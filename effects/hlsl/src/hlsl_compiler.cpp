@@ -18,9 +18,11 @@
 #include <csignal>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <mutex>
 #include <optional>
 #include <shared_mutex>
+#include <sstream>
 #include <type_traits>
 
 #include "internal.h"
@@ -364,6 +366,25 @@ CompileResult CompileHlsl(const CompileRequest& request) {
   } catch (const std::exception& e) {  // e.g. std::bad_alloc encoding the request
     return ErrorResult(request, std::string("internal compiler error: ") + e.what());
   }
+}
+
+CompileResult CompileHlslFile(const std::string& path, const std::string& entryPoint, const std::string& profile,
+                              const std::vector<std::string>& includeDirs) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) {
+    CompileResult result;
+    result.errors.push_back({path, 0, 0, "cannot read the file"});
+    return result;
+  }
+  std::ostringstream text;
+  text << file.rdbuf();
+  CompileRequest request;
+  request.source = text.str();
+  request.fileName = path;
+  request.entryPoint = entryPoint;
+  request.profile = profile;
+  request.includeDirs = includeDirs;
+  return CompileHlsl(request);
 }
 
 std::string CompileResult::FormatErrors() const {

@@ -156,6 +156,11 @@ struct CompileResult {
 // have line 0 and print as "file: error: message".
 CompileResult CompileHlsl(const CompileRequest& request);
 
+// CompileHlsl of the file at `path` (also the diagnostics' file name); a file
+// that cannot be read is an error "path: error: cannot read the file".
+CompileResult CompileHlslFile(const std::string& path, const std::string& entryPoint, const std::string& profile,
+                              const std::vector<std::string>& includeDirs = {});
+
 // Whether CompileRequest::isolate takes effect: false in ASan/TSan/MSan builds,
 // whose allocators deadlock in a child forked from a multithreaded process.
 bool CrashIsolationAvailable();

@@ -37,25 +37,14 @@ class ReplayTest : public GpuTest {
   }
 };
 
-// The paper's claim (Fig. 1). On this scene it does NOT hold, and the investigation says the
-// scene and the weight function are why, not a bug (the effect-driven replay, 128x72, 40 frames):
-//   alpha 2.739 vs WBOIT 3.883 RMSE to sorted (docs/images at 640x360, 120 frames: 5.62 vs 8.87).
-// - The sorted reference is right: particles read back after this frame's update (count from
-//   SO_STATISTICS), keyed by the view depth of the same centre the VS computes
-//   (p = t^2 a / 2 + t v0 + p0), drawn back to front with OVER.
-// - The weight is SPEC's, verbatim (translucency_outputs.hlsl, checked against
-//   oit::WboitWeight), but with this camera (near 0.1, far 40, smoke 5-9 units away)
-//   SV_Position.z is 0.982-0.991, so 1e8 * (1 - 0.9 z)^3 = 1.3e5-1.6e5 and every fragment with
-//   a > 0.03 hits the 3e3 clamp: the weight carries no depth. Replacing it by a constant gives
-//   3.773 (as good as SPEC's 3.883); a linear-depth weight (JCGT eq. 8) 3.335; even a steep
-//   (10/d)^8 depth weight only reaches 2.872, still above alpha's 2.739.
-// - The smoke's colour changes strongly with age (orange -> grey -> dark) and the puffs are
-//   dense (alpha up to 0.8, many layers), so the front-most layers dominate sorted OVER, while
-//   any weighted average mixes in the hidden ones. Unsorted OVER here is in emitter-major buffer
-//   order, newest first within an emitter, which is partly back to front already.
-// So the test stays disabled; SmokeDistancesToSortedAreReported keeps the numbers visible.
-// (On the shards demo WBOIT is closer to sorted than alpha: golden_test.cpp, 4.494 vs 5.832.)
-TEST_F(ReplayTest, DISABLED_WboitIsCloserToSortedThanAlphaBlendingOnSmoke) {
+// The paper's claim (Fig. 1): on the smoke demo WBOIT is closer to the sorted reference than
+// unsorted alpha blending, because the update GS keeps each emitter's particles oldest to newest
+// in the buffer and OVER then draws the newest (the low, orange puffs at the emitters) on top of
+// the older smoke in front of them. Measured on lavapipe, 128x72, 40 frames: alpha 8.487,
+// WBOIT 3.902 RMSE to sorted (640x360, 120 frames: 10.6 vs 8.9).
+// SPEC's weight carries no depth here: SV_Position.z is 0.98-0.99, so every fragment with
+// a > 0.03 hits the 3e3 clamp and WBOIT is an alpha-weighted average of the layers.
+TEST_F(ReplayTest, WboitIsCloserToSortedThanAlphaBlendingOnSmoke) {
   const TranslucencySettings s = Small(TranslucencyDemo::Smoke);
   const int frames = 40;
   auto sorted = Render(s, TranslucencyMethod::Sorted, frames);
@@ -67,18 +56,7 @@ TEST_F(ReplayTest, DISABLED_WboitIsCloserToSortedThanAlphaBlendingOnSmoke) {
   std::printf("smoke 128x72, %d frames: RMSE vs sorted: alpha %.3f, wboit %.3f\n", frames, alphaRmse, wboitRmse);
   EXPECT_GT(alphaRmse, 0.5) << "the smoke must overlap enough for order to matter";
   EXPECT_LT(wboitRmse, alphaRmse);
-}
-
-TEST_F(ReplayTest, SmokeDistancesToSortedAreReported) {
-  const TranslucencySettings s = Small(TranslucencyDemo::Smoke);
-  auto sorted = Render(s, TranslucencyMethod::Sorted, 40);
-  auto alpha = Render(s, TranslucencyMethod::Alpha, 40);
-  auto wboit = Render(s, TranslucencyMethod::Wboit, 40);
-  const double alphaRmse = renderer::Rmse(alpha, sorted), wboitRmse = renderer::Rmse(wboit, sorted);
-  std::printf("smoke 128x72, 40 frames: RMSE vs sorted: alpha %.3f, wboit %.3f\n", alphaRmse, wboitRmse);
-  EXPECT_GT(alphaRmse, 0.5) << "order matters: unsorted OVER differs from sorted";
-  EXPECT_GT(wboitRmse, 0.5);
-  EXPECT_LT(wboitRmse, 20.0) << "WBOIT stays an approximation of sorted, not garbage (no fp16 overflow)";
+  EXPECT_GT(wboitRmse, 0.5) << "WBOIT approximates sorted; it does not equal it";
 }
 
 // Mean over the pixels the shards cover of (R / G) with shards, and without.

@@ -188,6 +188,10 @@ class ContextImpl final : public DeviceContext {
   // D3D11's hazard rule: a resource bound for writing leaves every read binding.
   void UnbindFromReads(Resource* resource);
   bool IsBoundForWriting(Resource* resource) const;
+  // Render targets and depth-stencil views are texture-only: a buffer is written
+  // only through stream output and UAVs (the IA setters' check, on every draw).
+  bool IsBoundForWriting(const BufferImpl* buffer) const;
+  bool IsBoundForStreamOutOrUav(const Resource* resource) const;
 
   // Draw path (context_draw.cpp).
   // `indirect`: the buffer a draw reads its arguments from, and how.
@@ -204,8 +208,10 @@ class ContextImpl final : public DeviceContext {
   void BindGraphicsState(const GraphicsPipeline& pipeline);
   void SetViewportsAndScissors();
   void BindVertexAndIndexBuffers(const GraphicsPipeline& pipeline);
-  void PushDescriptors(VkPipelineBindPoint bindPoint, VkPipelineLayout layout,
-                       const std::vector<VkDescriptorSetLayoutBinding>& bindings);
+  void PushDescriptors(VkPipelineBindPoint bindPoint, const PipelineLayout& layout);
+  void WriteViewDescriptor(const RegisterSlot& reg, const StageState& stage, VkDescriptorType type,
+                           VkWriteDescriptorSet& write, VkDescriptorBufferInfo& buffer, VkDescriptorImageInfo& image,
+                           VkBufferView& texelBuffer);
   const ComputePipeline* PrepareDispatch(const char* call);
   void BindCompute(const ComputePipeline& pipeline);
   VkSampler defaultSampler();

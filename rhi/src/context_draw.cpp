@@ -165,8 +165,7 @@ void ContextImpl::TrackDrawResources(const GraphicsPipeline& pipeline, TrackedRe
     if (BufferImpl* buffer = vertexBuffers_[std::countr_zero(slots)].buffer.Get()) Use(*buffer, uses::kVertexBuffer);
   if (indexBuffer_.buffer) Use(*indexBuffer_.buffer, uses::kIndexBuffer);
   if (indirect) Use(*indirect, indirectUse);
-  for (const VkDescriptorSetLayoutBinding& binding : pipeline.layout->bindings) {
-    RegisterSlot reg = RegisterOfBinding(binding.binding);
+  for (const RegisterSlot& reg : pipeline.layout->registers) {
     const StageState& stage = stages_[static_cast<uint32_t>(reg.stage)];
     const VkPipelineStageFlags2 stageFlags = StageFlags(reg.stage);
     if (reg.registerClass == RegisterClass::ConstantBuffer && reg.slot < stage.constantBuffers.size()) {
@@ -220,7 +219,7 @@ void ContextImpl::BindGraphicsState(const GraphicsPipeline& pipeline) {
     vertexBuffersDirty_ = false;
   }
   if (descriptorsDirty_ && !pipeline.layout->bindings.empty()) {
-    PushDescriptors(VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout->layout, pipeline.layout->bindings);
+    PushDescriptors(VK_PIPELINE_BIND_POINT_GRAPHICS, *pipeline.layout);
   }
   descriptorsDirty_ = false;
 }
@@ -270,17 +269,17 @@ void ContextImpl::BindVertexAndIndexBuffers(const GraphicsPipeline& pipeline) {
   }
 }
 
-void ContextImpl::PushDescriptors(VkPipelineBindPoint bindPoint, VkPipelineLayout layout,
-                                  const std::vector<VkDescriptorSetLayoutBinding>& bindings) {
+void ContextImpl::PushDescriptors(VkPipelineBindPoint bindPoint, const PipelineLayout& layout) {
   // Scratch arrays keep their capacity across draws: no allocation per draw.
   auto& [writes, buffers, images, texelBuffers] = descriptorScratch_;
-  writes.resize(bindings.size());
-  buffers.resize(bindings.size());
-  images.resize(bindings.size());
-  texelBuffers.resize(bindings.size());
-  for (size_t i = 0; i < bindings.size(); ++i) {
-    const VkDescriptorSetLayoutBinding& binding = bindings[i];
-    RegisterSlot reg = RegisterOfBinding(binding.binding);
+  const size_t count = layout.bindings.size();
+  writes.resize(count);
+  buffers.resize(count);
+  images.resize(count);
+  texelBuffers.resize(count);
+  for (size_t i = 0; i < count; ++i) {
+    const VkDescriptorSetLayoutBinding& binding = layout.bindings[i];
+    const RegisterSlot& reg = layout.registers[i];
     const StageState& stage = stages_[static_cast<uint32_t>(reg.stage)];
     VkWriteDescriptorSet& write = writes[i];
     write = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -288,47 +287,60 @@ void ContextImpl::PushDescriptors(VkPipelineBindPoint bindPoint, VkPipelineLayou
     write.descriptorCount = 1;
     write.descriptorType = binding.descriptorType;
     // Only the array the type reads: lavapipe copies every non-null one per push.
-    switch (binding.descriptorType) {
-      case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER:
-      case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER: write.pBufferInfo = &buffers[i]; break;
-      case VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER:
-      case VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER: write.pTexelBufferView = &texelBuffers[i]; break;
-      default: write.pImageInfo = &images[i]; break;
-    }
-    buffers[i] = {VK_NULL_HANDLE, 0, VK_WHOLE_SIZE};
-    images[i] = {VK_NULL_HANDLE, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL};
-    texelBuffers[i] = VK_NULL_HANDLE;
-    const ViewTarget* view = nullptr;
     switch (reg.registerClass) {
-      case RegisterClass::ConstantBuffer:
-        if (reg.slot < stage.constantBuffers.size() && stage.constantBuffers[reg.slot]) {
-          BufferImpl& cb = *stage.constantBuffers[reg.slot];
-          buffers[i] = {cb.handle(), cb.baseOffset(), cb.desc().ByteWidth};
-        }
+      case RegisterClass::ConstantBuffer: {
+        write.pBufferInfo = &buffers[i];
+        BufferImpl* cb = reg.slot < stage.constantBuffers.size() ? stage.constantBuffers[reg.slot].Get() : nullptr;
+        buffers[i] = cb ? VkDescriptorBufferInfo{cb->handle(), cb->baseOffset(), cb->desc().ByteWidth}
+                        : VkDescriptorBufferInfo{VK_NULL_HANDLE, 0, VK_WHOLE_SIZE};
         continue;
+      }
       case RegisterClass::Sampler: {
+        write.pImageInfo = &images[i];
         SamplerStateImpl* sampler = reg.slot < stage.samplers.size() ? stage.samplers[reg.slot].Get() : nullptr;
         // D3D11 samples with the default sampler state where none is bound.
-        images[i].sampler = sampler ? sampler->handle() : defaultSampler();
+        images[i] = {sampler ? sampler->handle() : defaultSampler(), VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL};
         continue;
       }
       case RegisterClass::ShaderResource:
-        if (reg.slot < stage.shaderResources.size()) view = stage.shaderResources[reg.slot].Get();
-        break;
       case RegisterClass::UnorderedAccess:
-        if (reg.stage == ShaderStage::Compute && reg.slot < computeUavs_.size()) view = computeUavs_[reg.slot].Get();
-        break;
-    }
-    if (!view) continue;  // robustness2 null descriptor: reads return zero, as in D3D11
-    if (view->buffer()) {
-      buffers[i] = view->bufferRange();
-      texelBuffers[i] = view->bufferView();
-    } else {
-      images[i].imageView = view->imageView();
+        WriteViewDescriptor(reg, stage, binding.descriptorType, write, buffers[i], images[i], texelBuffers[i]);
+        continue;
     }
   }
-  device_->gpu().vkCmdPushDescriptorSetKHR(Commands(), bindPoint, layout, 0, static_cast<uint32_t>(writes.size()),
+  device_->gpu().vkCmdPushDescriptorSetKHR(Commands(), bindPoint, layout.layout, 0, static_cast<uint32_t>(count),
                                            writes.data());
+}
+
+// A shader-resource or unordered-access binding: a buffer, texel-buffer or image
+// descriptor, or a null one (robustness2) where nothing is bound: reads return
+// zero, as in D3D11.
+void ContextImpl::WriteViewDescriptor(const RegisterSlot& reg, const StageState& stage, VkDescriptorType type,
+                                      VkWriteDescriptorSet& write, VkDescriptorBufferInfo& buffer,
+                                      VkDescriptorImageInfo& image, VkBufferView& texelBuffer) {
+  const ViewTarget* view = nullptr;
+  if (reg.registerClass == RegisterClass::ShaderResource) {
+    if (reg.slot < stage.shaderResources.size()) view = stage.shaderResources[reg.slot].Get();
+  } else if (reg.stage == ShaderStage::Compute && reg.slot < computeUavs_.size()) {
+    view = computeUavs_[reg.slot].Get();
+  }
+  const ViewTarget* bufferView = view && view->buffer() ? view : nullptr;
+  switch (type) {
+    case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER:
+    case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER:
+      write.pBufferInfo = &buffer;
+      buffer = bufferView ? bufferView->bufferRange() : VkDescriptorBufferInfo{VK_NULL_HANDLE, 0, VK_WHOLE_SIZE};
+      break;
+    case VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER:
+    case VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER:
+      write.pTexelBufferView = &texelBuffer;
+      texelBuffer = bufferView ? bufferView->bufferView() : VK_NULL_HANDLE;
+      break;
+    default:
+      write.pImageInfo = &image;
+      image = {VK_NULL_HANDLE, view ? view->imageView() : VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL};
+      break;
+  }
 }
 
 VkSampler ContextImpl::defaultSampler() {
@@ -422,8 +434,7 @@ const ComputePipeline* ContextImpl::PrepareDispatch(const char* call) {
   }
   EndRendering();
   const StageState& stage = stages_[static_cast<uint32_t>(ShaderStage::Compute)];
-  for (const VkDescriptorSetLayoutBinding& binding : pipeline->layout->bindings) {
-    RegisterSlot reg = RegisterOfBinding(binding.binding);
+  for (const RegisterSlot& reg : pipeline->layout->registers) {
     const Access read{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_READ_BIT, false};
     if (reg.registerClass == RegisterClass::ConstantBuffer && reg.slot < stage.constantBuffers.size()) {
       if (BufferImpl* cb = stage.constantBuffers[reg.slot].Get())
@@ -443,7 +454,7 @@ void ContextImpl::BindCompute(const ComputePipeline& pipeline) {
   FlushBarriers();
   vkCmdBindPipeline(Commands(), VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.pipeline);
   if (!pipeline.layout->bindings.empty())
-    PushDescriptors(VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout->layout, pipeline.layout->bindings);
+    PushDescriptors(VK_PIPELINE_BIND_POINT_COMPUTE, *pipeline.layout);
 }
 
 void ContextImpl::Dispatch(UINT ThreadGroupCountX, UINT ThreadGroupCountY, UINT ThreadGroupCountZ) {

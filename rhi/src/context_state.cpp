@@ -221,11 +221,19 @@ void ContextImpl::OMSetDepthStencilState(DepthStencilState* pDepthStencilState, 
 
 bool ContextImpl::IsBoundForWriting(Resource* resource) const {
   if (!resource) return false;
-  for (const auto& target : streamOut_)
-    if (target.buffer.Get() == resource) return true;
   for (const auto& view : renderTargets_)
     if (view && view->resource() == resource) return true;
   if (depthStencil_ && depthStencil_->resource() == resource) return true;
+  return IsBoundForStreamOutOrUav(resource);
+}
+
+bool ContextImpl::IsBoundForWriting(const BufferImpl* buffer) const {
+  return buffer && IsBoundForStreamOutOrUav(buffer);
+}
+
+bool ContextImpl::IsBoundForStreamOutOrUav(const Resource* resource) const {
+  for (const auto& target : streamOut_)
+    if (target.buffer.Get() == resource) return true;
   for (const auto& view : computeUavs_)
     if (view && view->resource() == resource) return true;
   return false;

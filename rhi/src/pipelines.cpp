@@ -109,6 +109,7 @@ const PipelineLayout* PipelineCache::Layout(const std::vector<VkDescriptorSetLay
   if (slot) return slot.get();
   auto layout = std::make_unique<PipelineLayout>();
   layout->bindings = bindings;
+  for (const auto& b : bindings) layout->registers.push_back(RegisterOfBinding(b.binding));
   VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   // D3D11 rebinds per draw: push descriptors match that without pools.
   setInfo.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;

@@ -40,10 +40,26 @@ GraphicsPipelineKey DefaultPipelineKey();
 // The key's topologyClass: topologies Vulkan switches dynamically share a pipeline.
 uint32_t TopologyClass(PRIMITIVE_TOPOLOGY topology);
 
+// Which D3D11 register a descriptor binding stands for (inverse of BindingFor).
+struct RegisterSlot {
+  ShaderStage stage;
+  RegisterClass registerClass;
+  uint32_t slot;
+};
+inline RegisterSlot RegisterOfBinding(uint32_t binding) {
+  const auto stage = static_cast<ShaderStage>(binding / kStageStride);
+  const uint32_t offset = binding % kStageStride;
+  if (offset >= kUnorderedAccessBase) return {stage, RegisterClass::UnorderedAccess, offset - kUnorderedAccessBase};
+  if (offset >= kSamplerBase) return {stage, RegisterClass::Sampler, offset - kSamplerBase};
+  if (offset >= kShaderResourceBase) return {stage, RegisterClass::ShaderResource, offset - kShaderResourceBase};
+  return {stage, RegisterClass::ConstantBuffer, offset};
+}
+
 struct PipelineLayout {
   VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
   VkPipelineLayout layout = VK_NULL_HANDLE;
   std::vector<VkDescriptorSetLayoutBinding> bindings;
+  std::vector<RegisterSlot> registers;  // of each binding, decoded once for the draw path
 };
 
 struct GraphicsPipeline {
@@ -108,21 +124,5 @@ class PipelineCache {
   std::unordered_map<std::string, std::unique_ptr<PipelineLayout>> layouts_;
   std::unique_ptr<ComputePipeline> drawAutoArgs_;
 };
-
-// Which D3D11 register a descriptor binding stands for (inverse of BindingFor).
-struct RegisterSlot {
-  ShaderStage stage;
-  RegisterClass registerClass;
-  uint32_t slot;
-};
-// Inline: the draw path decodes every binding of the layout per draw.
-inline RegisterSlot RegisterOfBinding(uint32_t binding) {
-  const auto stage = static_cast<ShaderStage>(binding / kStageStride);
-  const uint32_t offset = binding % kStageStride;
-  if (offset >= kUnorderedAccessBase) return {stage, RegisterClass::UnorderedAccess, offset - kUnorderedAccessBase};
-  if (offset >= kSamplerBase) return {stage, RegisterClass::Sampler, offset - kSamplerBase};
-  if (offset >= kShaderResourceBase) return {stage, RegisterClass::ShaderResource, offset - kShaderResourceBase};
-  return {stage, RegisterClass::ConstantBuffer, offset};
-}
 
 }  // namespace rhi::vk

@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "hlsl/hlsl_compiler.h"
+#include "rhi/capture.h"
 #include "rhi/rhi.h"
 #include "rhi/swap_chain.h"
 #include "scene_params.h"
@@ -373,22 +374,8 @@ class Demo {
 
   // Reads the resolved frame back through a STAGING texture; returns tightly packed RGBA8.
   std::vector<uint8_t> ReadBack() {
-    rhi::TEXTURE2D_DESC desc;
-    resolved_->GetDesc(&desc);
-    desc.BindFlags = 0;
-    desc.Usage = rhi::USAGE_STAGING;
-    desc.CPUAccessFlags = rhi::CPU_ACCESS_READ;
-    desc.MiscFlags = 0;
-    ComPtr<rhi::Texture2D> staging;
-    Check(device_->CreateTexture2D(&desc, nullptr, staging.GetAddressOf()), "CreateTexture2D(staging)");
-    context_->CopyResource(staging.Get(), resolved_.Get());
-    rhi::MAPPED_SUBRESOURCE mapped{};
-    Check(context_->Map(staging.Get(), 0, rhi::MAP_READ, 0, &mapped), "Map(staging, READ)");
-    std::vector<uint8_t> pixels(static_cast<size_t>(width_) * height_ * 4);
-    for (UINT y = 0; y < height_; ++y)
-      std::memcpy(&pixels[static_cast<size_t>(y) * width_ * 4], static_cast<const uint8_t*>(mapped.pData) + y * mapped.RowPitch,
-                  width_ * 4);
-    context_->Unmap(staging.Get(), 0);
+    std::vector<uint8_t> pixels;
+    Check(rhi::CaptureTexture2D(device_, context_, resolved_.Get(), 0, &pixels), "CaptureTexture2D");
     return pixels;
   }
 

@@ -59,6 +59,7 @@
 #include "hlsl/hlsl_compiler.h"
 #include "imgui_rhi.h"
 #include "renderer/translucency.h"
+#include "rhi/capture.h"
 #include "rhi/rhi.h"
 #include "rhi/swap_chain.h"
 
@@ -469,20 +470,8 @@ void ReplayWindow::BuildOverlay() {
 bool ReplayWindow::SaveScreenshot(const std::string& path) {
   rhi::TEXTURE2D_DESC desc;
   backBuffer_->GetDesc(&desc);
-  desc.BindFlags = 0;
-  desc.Usage = rhi::USAGE_STAGING;
-  desc.CPUAccessFlags = rhi::CPU_ACCESS_READ;
-  desc.MiscFlags = 0;
-  ComPtr<rhi::Texture2D> staging;
-  if (rhi::FAILED(device_->CreateTexture2D(&desc, nullptr, staging.GetAddressOf()))) return false;
-  ctx_->CopyResource(staging.Get(), backBuffer_.Get());
-  rhi::MAPPED_SUBRESOURCE mapped{};
-  if (rhi::FAILED(ctx_->Map(staging.Get(), 0, rhi::MAP_READ, 0, &mapped))) return false;
-  std::vector<uint8_t> pixels(size_t(desc.Width) * desc.Height * 4);
-  for (UINT y = 0; y < desc.Height; ++y)
-    std::memcpy(&pixels[size_t(y) * desc.Width * 4], static_cast<const uint8_t*>(mapped.pData) + y * mapped.RowPitch,
-                desc.Width * 4);
-  ctx_->Unmap(staging.Get(), 0);
+  std::vector<uint8_t> pixels;
+  if (rhi::FAILED(rhi::CaptureTexture2D(device_, ctx_, backBuffer_.Get(), 0, &pixels))) return false;
   if (desc.Format == rhi::DXGI_FORMAT_B8G8R8A8_UNORM)
     for (size_t i = 0; i < pixels.size(); i += 4) std::swap(pixels[i], pixels[i + 2]);
   if (!stbi_write_png(path.c_str(), int(desc.Width), int(desc.Height), 4, pixels.data(), int(desc.Width * 4))) {

@@ -11,6 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "fx/effect.h"
+#include "rhi/capture.h"
 
 namespace renderer {
 
@@ -772,23 +773,8 @@ void Translucency::ComposePass(TranslucencyMethod method) {
 Texture2D* Translucency::FrameTexture() const { return impl_->frame.Get(); }
 
 std::vector<uint8_t> Translucency::ReadFrame() {
-  Impl& m = *impl_;
-  TEXTURE2D_DESC desc;
-  m.frame->GetDesc(&desc);
-  desc.BindFlags = 0;
-  desc.Usage = USAGE_STAGING;
-  desc.CPUAccessFlags = CPU_ACCESS_READ;
-  desc.MiscFlags = 0;
-  ComPtr<Texture2D> staging;
-  std::vector<uint8_t> pixels(size_t(settings_.width) * settings_.height * 4);
-  if (FAILED(m.device->CreateTexture2D(&desc, nullptr, staging.GetAddressOf()))) return {};
-  m.context->CopyResource(staging.Get(), m.frame.Get());
-  MAPPED_SUBRESOURCE mapped{};
-  if (FAILED(m.context->Map(staging.Get(), 0, MAP_READ, 0, &mapped))) return {};
-  for (UINT y = 0; y < settings_.height; ++y)
-    std::memcpy(&pixels[size_t(y) * settings_.width * 4], static_cast<const uint8_t*>(mapped.pData) + y * mapped.RowPitch,
-                settings_.width * 4);
-  m.context->Unmap(staging.Get(), 0);
+  std::vector<uint8_t> pixels;
+  if (FAILED(rhi::CaptureTexture2D(impl_->device, impl_->context, impl_->frame.Get(), 0, &pixels))) return {};
   return pixels;
 }
 

@@ -3,6 +3,7 @@
 #include <vulkan/vulkan.h>
 
 #include "hlsl/hlsl_compiler.h"
+#include "rhi/capture.h"
 
 namespace rhi_test {
 
@@ -54,8 +55,9 @@ void GpuTest::SetUp() {
 GpuTest::~GpuTest() {
   if (context) context->Flush();
   context.Reset();
-  if (rhi::Device* last = device.Detach())
+  if (rhi::Device* last = device.Detach()) {
     EXPECT_EQ(last->Release(), 0u) << "the device outlives its last reference (a leaked device child?)";
+  }
   for (const Message& m : messages_)
     if (m.category == rhi::MESSAGE_CATEGORY_VULKAN_VALIDATION) ADD_FAILURE() << "validation layer: " << m.text;
 }
@@ -133,27 +135,9 @@ void GpuTest::SetViewport(UINT width, UINT height) {
 }
 
 std::vector<uint8_t> GpuTest::ReadTexture(rhi::Texture2D* texture, UINT subresource) {
-  rhi::TEXTURE2D_DESC desc;
-  texture->GetDesc(&desc);
-  const UINT mip = subresource % desc.MipLevels;
-  desc.Width = std::max(1u, desc.Width >> mip);
-  desc.Height = std::max(1u, desc.Height >> mip);
-  desc.MipLevels = 1;
-  desc.ArraySize = 1;
-  desc.SampleDesc = {1, 0};
-  desc.Usage = rhi::USAGE_STAGING;
-  desc.BindFlags = 0;
-  desc.CPUAccessFlags = rhi::CPU_ACCESS_READ;
-  desc.MiscFlags = 0;
-  ComPtr<rhi::Texture2D> staging;
-  EXPECT_EQ(device->CreateTexture2D(&desc, nullptr, staging.GetAddressOf()), rhi::S_OK);
-  context->CopySubresourceRegion(staging.Get(), 0, 0, 0, 0, texture, subresource, nullptr);
-  rhi::MAPPED_SUBRESOURCE mapped{};
-  EXPECT_EQ(context->Map(staging.Get(), 0, rhi::MAP_READ, 0, &mapped), rhi::S_OK);
-  std::vector<uint8_t> bytes(static_cast<size_t>(mapped.DepthPitch));
-  std::memcpy(bytes.data(), mapped.pData, bytes.size());
-  context->Unmap(staging.Get(), 0);
-  return bytes;
+  std::vector<uint8_t> texels;
+  EXPECT_EQ(rhi::CaptureTexture2D(device.Get(), context.Get(), texture, subresource, &texels), rhi::S_OK);
+  return texels;
 }
 
 std::vector<uint8_t> GpuTest::ReadBuffer(rhi::Buffer* buffer) {

@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "gpu_helpers.h"
+#include "rhi/capture.h"
 
 namespace rhi_test {
 namespace {
@@ -208,6 +209,33 @@ TEST_F(ResourceTest, UpdateSubresourceOnDefaultBufferWritesOnlyTheBox) {
 
 // ---------------------------------------------------------------------------
 // Texture copies and updates
+
+// rhi::CaptureTexture2D (the readback of the tests, the demos and the screenshots):
+// rows come back tightly packed whatever the staging row pitch (3 texels of R8_UNORM
+// are 3 bytes a row), a mip level has that level's size, and what it cannot read
+// is refused with the reason.
+TEST_F(ResourceTest, CaptureTexture2DPacksRowsAndRefusesWhatItCannotRead) {
+  const uint8_t bytes[3 * 2] = {1, 2, 3, 4, 5, 6};
+  ComPtr<Texture2D> narrow = Texture(3, 2, DXGI_FORMAT_R8_UNORM, bytes, 3);
+  std::vector<uint8_t> texels;
+  ASSERT_EQ(CaptureTexture2D(device.Get(), context.Get(), narrow.Get(), 0, &texels), S_OK);
+  EXPECT_EQ(texels, std::vector<uint8_t>(std::begin(bytes), std::end(bytes)));
+
+  const uint32_t level0[16] = {}, level1[4] = {0x01020304, 0x05060708, 0x090A0B0C, 0x0D0E0F10};
+  const SUBRESOURCE_DATA levels[2] = {{level0, 16, 64}, {level1, 8, 16}};
+  ComPtr<Texture2D> mipped = Texture(4, 4, DXGI_FORMAT_R8G8B8A8_UNORM, nullptr, 0, 2, 1, levels);
+  ASSERT_EQ(CaptureTexture2D(device.Get(), context.Get(), mipped.Get(), 1, &texels), S_OK);
+  EXPECT_EQ(texels.size(), 16u);
+  EXPECT_EQ(Pixel(texels, 2, 1, 1), 0x0D0E0F10u);
+
+  EXPECT_EQ(CaptureTexture2D(device.Get(), context.Get(), mipped.Get(), 2, &texels), E_INVALIDARG);
+  EXPECT_TRUE(RefusedWith("CaptureTexture2D: subresource 2 is out of range (2 subresources)"));
+  TEXTURE2D_DESC msDesc{4, 4, 1, 1, DXGI_FORMAT_R8G8B8A8_UNORM, {4, 0}, USAGE_DEFAULT, BIND_RENDER_TARGET, 0, 0};
+  ComPtr<Texture2D> multisampled;
+  ASSERT_EQ(device->CreateTexture2D(&msDesc, nullptr, multisampled.GetAddressOf()), S_OK);
+  EXPECT_EQ(CaptureTexture2D(device.Get(), context.Get(), multisampled.Get(), 0, &texels), E_INVALIDARG);
+  EXPECT_TRUE(RefusedWith("the texture is multisampled (SampleDesc.Count 4); resolve it"));
+}
 
 TEST_F(ResourceTest, UpdateSubresourceOnTextureRegionHonoursBoxAndSourceRowPitch) {
   std::vector<uint32_t> zeros(64, 0);

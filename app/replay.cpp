@@ -196,8 +196,8 @@ int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
     const int warmup = o.warmup >= 0 ? o.warmup : particles ? int(base.rule.minLife + base.rule.lifeRange) : 2;
     std::printf("\n%s: %ux%u, %s%s, %d warm-up frames\n", bc.name.c_str(), base.width, base.height,
                 renderer::ToString(base.demo), base.extraShards ? " + shards" : "", warmup);
-    std::printf("%-8s %9s %9s %9s %9s %9s %9s %9s %9s %9s %10s\n", "method", "FPS(GPU)", "GPU ms", "opaque",
-                "update", "3D pass", "compose", "CPU ms", "wall ms", "particles", "shards");
+    std::printf("%-8s %9s %9s %9s %9s %9s %9s %9s %9s %9s %10s %9s %9s\n", "method", "FPS(GPU)", "GPU ms", "opaque",
+                "update", "3D pass", "compose", "CPU ms", "wall ms", "particles", "shards", "3D Mfrag", "Gfrag/s");
     double gpuMs[4] = {}, cpuMs[4] = {};
     const TranslucencyMethod methods[4] = {TranslucencyMethod::Alpha, TranslucencyMethod::Wboit,
                                            TranslucencyMethod::Colored, TranslucencyMethod::Sorted};
@@ -209,7 +209,7 @@ int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
         t->RenderFrame(methods[mi]);
         t->LastTimes();
       }
-      std::vector<double> wall, cpu, opaque, update, pass3d, compose, gpu;
+      std::vector<double> wall, cpu, opaque, update, pass3d, compose, gpu, fragments;
       for (int i = 0; i < frames; ++i) {
         auto start = std::chrono::steady_clock::now();
         t->RenderFrame(methods[mi]);
@@ -221,6 +221,7 @@ int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
         if (!times.valid) continue;
         opaque.push_back(times.opaqueMs), update.push_back(times.updateMs), pass3d.push_back(times.transparencyMs);
         compose.push_back(times.composeMs), gpu.push_back(times.totalMs);
+        fragments.push_back(double(times.transparencyFragments));
       }
       gpuMs[mi] = Median(gpu), cpuMs[mi] = Median(cpu);
       // The live count of the last frame (an extra SO_STATISTICS frame, not timed).
@@ -230,11 +231,14 @@ int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
         live = t->particleCount();
         t->LastTimes();
       }
-      std::printf("%-8s %9.1f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9llu %10u\n",
+      // The 3D pass's fill rate: fragments shaded (and blended) per second.
+      const double pass3dMs = Median(pass3d), fragmentCount = Median(fragments);
+      std::printf("%-8s %9.1f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9llu %10u %9.2f %9.2f\n",
                   renderer::ToString(methods[mi]), gpuMs[mi] > 0 ? 1000.0 / gpuMs[mi] : 0.0, gpuMs[mi],
-                  Median(opaque), Median(update), Median(pass3d), Median(compose), cpuMs[mi], Median(wall),
+                  Median(opaque), Median(update), pass3dMs, Median(compose), cpuMs[mi], Median(wall),
                   static_cast<unsigned long long>(live),
-                  base.demo == TranslucencyDemo::Shards ? base.shardCount : base.extraShards);
+                  base.demo == TranslucencyDemo::Shards ? base.shardCount : base.extraShards, fragmentCount / 1e6,
+                  pass3dMs > 0 ? fragmentCount / (pass3dMs * 1e6) : 0.0);
     }
     std::printf("%s: WBOIT/alpha GPU frame-time ratio %.3f (target <= 1.27; paper, smoke on D3D11: "
                 "1.183/0.935 = 1.265); CPU ms per frame: alpha %.3f, WBOIT %.3f\n",

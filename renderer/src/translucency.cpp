@@ -241,7 +241,7 @@ struct Translucency::Impl {
   UINT shardIndices = 0;
   std::vector<ShardInstance> instanceData;
   // Timing.
-  ComPtr<Query> disjoint, stamps[5];
+  ComPtr<Query> disjoint, stamps[5], transparencyStatistics;
   bool timesPending = false;
   bool countThisFrame = false;
 
@@ -337,9 +337,11 @@ bool Translucency::Initialize(Device* device, DeviceContext* context, const Tran
     return fail("the opaque buffers");
 
   // Timing.
-  QUERY_DESC disjoint{QUERY_TIMESTAMP_DISJOINT, 0}, stamp{QUERY_TIMESTAMP, 0}, so{QUERY_SO_STATISTICS, 0};
+  QUERY_DESC disjoint{QUERY_TIMESTAMP_DISJOINT, 0}, stamp{QUERY_TIMESTAMP, 0}, so{QUERY_SO_STATISTICS, 0},
+      statistics{QUERY_PIPELINE_STATISTICS, 0};
   if (FAILED(device->CreateQuery(&disjoint, m.disjoint.GetAddressOf())) ||
-      FAILED(device->CreateQuery(&so, m.soStats.GetAddressOf())))
+      FAILED(device->CreateQuery(&so, m.soStats.GetAddressOf())) ||
+      FAILED(device->CreateQuery(&statistics, m.transparencyStatistics.GetAddressOf())))
     return fail("the queries");
   for (auto& q : m.stamps)
     if (FAILED(device->CreateQuery(&stamp, q.GetAddressOf()))) return fail("the timestamp queries");
@@ -578,7 +580,9 @@ void Translucency::RenderFrame(TranslucencyMethod method) {
   Timestamp(1);
   ParticleUpdatePass();
   Timestamp(2);
+  if (settings_.timestamps) m.context->Begin(m.transparencyStatistics.Get());
   TransparencyPass(method);
+  if (settings_.timestamps) m.context->End(m.transparencyStatistics.Get());
   Timestamp(3);
   ComposePass(method);
   Timestamp(4);
@@ -790,6 +794,9 @@ PassTimes Translucency::LastTimes() {
   for (int i = 0; i < 5; ++i)
     while (m.context->GetData(m.stamps[i].Get(), &stamps[i], sizeof stamps[i], 0) == S_FALSE) {
     }
+  QUERY_DATA_PIPELINE_STATISTICS statistics{};
+  while (m.context->GetData(m.transparencyStatistics.Get(), &statistics, sizeof statistics, 0) == S_FALSE) {
+  }
   if (disjoint.Disjoint || disjoint.Frequency == 0) return t;
   auto ms = [&](int a, int b) { return double(stamps[b] - stamps[a]) * 1000.0 / double(disjoint.Frequency); };
   t.valid = true;
@@ -798,6 +805,7 @@ PassTimes Translucency::LastTimes() {
   t.transparencyMs = ms(2, 3);
   t.composeMs = ms(3, 4);
   t.totalMs = ms(0, 4);
+  t.transparencyFragments = statistics.PSInvocations;
   return t;
 }
 

@@ -59,6 +59,25 @@ TEST_F(ReplayTest, WboitIsCloserToSortedThanAlphaBlendingOnSmoke) {
   EXPECT_GT(wboitRmse, 0.5) << "WBOIT approximates sorted; it does not equal it";
 }
 
+// The bench's fill-rate column: the 3D pass's pixel-shader invocations
+// (PIPELINE_STATISTICS) depend on the geometry and the depth test, not on the blend
+// tables or the draw order, so every method shades the same fragments on the same frame.
+TEST_F(ReplayTest, TransparencyFragmentsAreTheSameForEveryMethod) {
+  TranslucencySettings s = Small(TranslucencyDemo::Smoke);
+  s.timestamps = true;
+  std::vector<uint64_t> fragments;
+  for (TranslucencyMethod method : {TranslucencyMethod::Alpha, TranslucencyMethod::Wboit,
+                                    TranslucencyMethod::Colored, TranslucencyMethod::Sorted}) {
+    std::string error;
+    auto t = Translucency::Create(device.Get(), context.Get(), s, &error);
+    ASSERT_NE(t, nullptr) << error;
+    for (int i = 0; i < 20; ++i) t->RenderFrame(method);
+    fragments.push_back(t->LastTimes().transparencyFragments);
+  }
+  EXPECT_GT(fragments[0], uint64_t(s.width) * s.height / 10) << "the smoke covers a good part of the frame";
+  for (size_t i = 1; i < fragments.size(); ++i) EXPECT_EQ(fragments[i], fragments[0]) << "method " << i;
+}
+
 // Mean over the pixels the shards cover of (R / G) with shards, and without.
 struct Tint {
   double withShards = 0, without = 0;

@@ -56,13 +56,16 @@ struct TranslucencySettings {
   // Background.
   bool neutralBackground = false;  // a plain grey wall instead of coloured stripes
   bool literalTable4 = false;      // colored: compose with Table 4 as printed
-  bool timestamps = false;         // per-pass TIMESTAMP queries (see LastTimes)
+  bool timestamps = false;         // per-pass TIMESTAMP queries and the 3D pass's statistics (see LastTimes)
   bool countParticles = false;     // SO_STATISTICS around every update (see particleCount)
 };
 
 struct PassTimes {
   bool valid = false;  // false when the disjoint query said disjoint
   double opaqueMs = 0, updateMs = 0, transparencyMs = 0, composeMs = 0, totalMs = 0;
+  // Pixel-shader invocations of the 3D transparency pass (PIPELINE_STATISTICS): the
+  // fragments it shades and blends, what a fill-bound pass's time follows.
+  uint64_t transparencyFragments = 0;
 };
 
 class Translucency {

@@ -209,9 +209,7 @@ class ContextImpl final : public DeviceContext {
   void SetViewportsAndScissors();
   void BindVertexAndIndexBuffers(const GraphicsPipeline& pipeline);
   void PushDescriptors(VkPipelineBindPoint bindPoint, const PipelineLayout& layout);
-  void WriteViewDescriptor(const RegisterSlot& reg, const StageState& stage, VkDescriptorType type,
-                           VkWriteDescriptorSet& write, VkDescriptorBufferInfo& buffer, VkDescriptorImageInfo& image,
-                           VkBufferView& texelBuffer);
+  void WriteViewDescriptor(size_t i, const RegisterSlot& reg, const StageState& stage);
   const ComputePipeline* PrepareDispatch(const char* call);
   void BindCompute(const ComputePipeline& pipeline);
   VkSampler defaultSampler();

@@ -304,7 +304,7 @@ void ContextImpl::PushDescriptors(VkPipelineBindPoint bindPoint, const PipelineL
       }
       case RegisterClass::ShaderResource:
       case RegisterClass::UnorderedAccess:
-        WriteViewDescriptor(reg, stage, binding.descriptorType, write, buffers[i], images[i], texelBuffers[i]);
+        WriteViewDescriptor(i, reg, stage);
         continue;
     }
   }
@@ -312,12 +312,13 @@ void ContextImpl::PushDescriptors(VkPipelineBindPoint bindPoint, const PipelineL
                                            writes.data());
 }
 
-// A shader-resource or unordered-access binding: a buffer, texel-buffer or image
+// Entry i of the descriptor scratch for a shader-resource or unordered-access
+// binding (its write's type already set): a buffer, texel-buffer or image
 // descriptor, or a null one (robustness2) where nothing is bound: reads return
 // zero, as in D3D11.
-void ContextImpl::WriteViewDescriptor(const RegisterSlot& reg, const StageState& stage, VkDescriptorType type,
-                                      VkWriteDescriptorSet& write, VkDescriptorBufferInfo& buffer,
-                                      VkDescriptorImageInfo& image, VkBufferView& texelBuffer) {
+void ContextImpl::WriteViewDescriptor(size_t i, const RegisterSlot& reg, const StageState& stage) {
+  auto& [writes, buffers, images, texelBuffers] = descriptorScratch_;
+  VkWriteDescriptorSet& write = writes[i];
   const ViewTarget* view = nullptr;
   if (reg.registerClass == RegisterClass::ShaderResource) {
     if (reg.slot < stage.shaderResources.size()) view = stage.shaderResources[reg.slot].Get();
@@ -325,20 +326,20 @@ void ContextImpl::WriteViewDescriptor(const RegisterSlot& reg, const StageState&
     view = computeUavs_[reg.slot].Get();
   }
   const ViewTarget* bufferView = view && view->buffer() ? view : nullptr;
-  switch (type) {
+  switch (write.descriptorType) {
     case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER:
     case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER:
-      write.pBufferInfo = &buffer;
-      buffer = bufferView ? bufferView->bufferRange() : VkDescriptorBufferInfo{VK_NULL_HANDLE, 0, VK_WHOLE_SIZE};
+      write.pBufferInfo = &buffers[i];
+      buffers[i] = bufferView ? bufferView->bufferRange() : VkDescriptorBufferInfo{VK_NULL_HANDLE, 0, VK_WHOLE_SIZE};
       break;
     case VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER:
     case VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER:
-      write.pTexelBufferView = &texelBuffer;
-      texelBuffer = bufferView ? bufferView->bufferView() : VK_NULL_HANDLE;
+      write.pTexelBufferView = &texelBuffers[i];
+      texelBuffers[i] = bufferView ? bufferView->bufferView() : VK_NULL_HANDLE;
       break;
     default:
-      write.pImageInfo = &image;
-      image = {VK_NULL_HANDLE, view ? view->imageView() : VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL};
+      write.pImageInfo = &images[i];
+      images[i] = {VK_NULL_HANDLE, view ? view->imageView() : VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL};
       break;
   }
 }

@@ -1,24 +1,25 @@
 // rhi_bench: CPU cost per draw through the RHI against the same command stream
 // recorded with raw Vulkan calls, in one binary, on the same physical device.
 //
-// Each benchmark iteration records one batch of kDrawsPerBatch draws (see
-// bench_scene.h for the stream). Only the recording is timed (manual time):
-// the submission and the wait for the GPU run outside the measured interval.
-// For the RHI, the measured interval is everything from the first binding call
-// of the batch to the last Draw: state tracking, pipeline-cache lookups,
-// barriers, dynamic rendering begin, push descriptors, vkCmd* recording (and
-// command-buffer acquisition if the backend does it lazily there). Flush (end
-// rendering, end command buffer, vkQueueSubmit2) and the wait are excluded, as
-// the raw side's end, submit, wait and command-pool reset are.
+// Each iteration of BM_RhiVsRaw records one RHI batch and one raw batch of
+// kDrawsPerBatch draws each (see bench_scene.h for the stream). Only the
+// recordings are timed (manual time = the RHI's): the submissions and the waits
+// for the GPU run outside the measured intervals. For the RHI, the measured
+// interval is everything from the first binding call of the batch to the last
+// Draw: state tracking, pipeline-cache lookups, barriers, dynamic rendering
+// begin, push descriptors, vkCmd* recording (and command-buffer acquisition if
+// the backend does it lazily there). Flush (end rendering, end command buffer,
+// vkQueueSubmit2) and the wait are excluded, as the raw side's end, submit,
+// wait and command-pool reset are.
 //
 // The clock is the recording thread's CPU time (CLOCK_THREAD_CPUTIME_ID): on a
 // shared machine the wall clock also counts the time the thread waits for a
 // core, which is not a cost of the RHI. Both clocks are reported.
 //
-// Counters: ns_per_draw = recorded thread-CPU nanoseconds / draws (this is the
-// manual time too); wall_ns_per_draw = the same interval on the wall clock.
-// After the run the binary prints the ratio of the medians of ns_per_draw
-// (RHI / raw); with --benchmark_repetitions=N, the medians over the repetitions.
+// Counters: rhi_ns_per_draw / raw_ns_per_draw = recorded thread-CPU nanoseconds
+// / draws; *_wall_ns_per_draw = the same intervals on the wall clock; ratio =
+// RHI / raw over the repetition. After the run the binary prints the median of
+// the ratios over the repetitions (--benchmark_repetitions=N), with their range.
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
@@ -226,54 +227,77 @@ RawVulkan& Raw() {
   return *gRaw;
 }
 
-// Runs `record` timed (thread CPU time) and `submit` untimed once per iteration.
-template <class Record, class Submit>
-void MeasureBatches(benchmark::State& state, Record&& record, Submit&& submit) {
-  double totalCpuNs = 0, totalWallNs = 0;
+// One timed recording: thread CPU seconds and wall seconds of `record`.
+struct Timed {
+  double cpuSeconds = 0;
+  double wallSeconds = 0;
+};
+template <class Record>
+Timed TimeRecording(Record&& record) {
+  const Clock::time_point wallStart = Clock::now();
+  const double cpuStart = ThreadCpuSeconds();
+  record();
+  const double cpuSeconds = ThreadCpuSeconds() - cpuStart;
+  return {cpuSeconds, std::chrono::duration<double>(Clock::now() - wallStart).count()};
+}
+
+// The headline: each iteration records one RHI batch and one raw batch, each
+// followed by its untimed submit-and-wait, so both halves are timed under the
+// same machine load and the same state of the process heap, in which
+// lavapipe allocates every recorded command. (Timed one after the other, a
+// repetition of either half could land in a slower state of that heap than
+// the other half's, and the ratio moved by up to 1.6x between runs.) The
+// manual time is the RHI's; the ratio counter is RHI / raw over the repetition.
+void BM_RhiVsRaw(benchmark::State& state) {
+  RhiScene& rhi = Rhi();
+  RawVulkan& raw = Raw();
+  Timed rhiTotal, rawTotal;
   int64_t draws = 0;
   for (auto _ : state) {
-    const Clock::time_point wallStart = Clock::now();
-    const double cpuStart = ThreadCpuSeconds();
-    record();
-    const double cpuSeconds = ThreadCpuSeconds() - cpuStart;
-    const Clock::time_point wallStop = Clock::now();
-    submit();
-    state.SetIterationTime(cpuSeconds);
-    totalCpuNs += cpuSeconds * 1e9;
-    totalWallNs += std::chrono::duration<double, std::nano>(wallStop - wallStart).count();
+    const Timed rhiBatch = TimeRecording([&] { rhi.RecordBatch(kDrawsPerBatch); });
+    rhi.SubmitAndWait();
+    const Timed rawBatch = TimeRecording([&] { raw.RecordBatch(kDrawsPerBatch, false); });
+    raw.SubmitAndWait();
+    state.SetIterationTime(rhiBatch.cpuSeconds);
+    rhiTotal.cpuSeconds += rhiBatch.cpuSeconds;
+    rhiTotal.wallSeconds += rhiBatch.wallSeconds;
+    rawTotal.cpuSeconds += rawBatch.cpuSeconds;
+    rawTotal.wallSeconds += rawBatch.wallSeconds;
     draws += kDrawsPerBatch;
   }
   state.SetItemsProcessed(draws);
-  const double n = draws ? static_cast<double>(draws) : 1.0;
-  state.counters["ns_per_draw"] = totalCpuNs / n;
-  state.counters["wall_ns_per_draw"] = totalWallNs / n;
-}
-
-void BM_RhiDraw(benchmark::State& state) {
-  RhiScene& scene = Rhi();
-  MeasureBatches(state, [&] { scene.RecordBatch(kDrawsPerBatch); }, [&] { scene.SubmitAndWait(); });
+  const double nsPerDraw = draws ? 1e9 / static_cast<double>(draws) : 0.0;
+  state.counters["rhi_ns_per_draw"] = rhiTotal.cpuSeconds * nsPerDraw;
+  state.counters["raw_ns_per_draw"] = rawTotal.cpuSeconds * nsPerDraw;
+  state.counters["rhi_wall_ns_per_draw"] = rhiTotal.wallSeconds * nsPerDraw;
+  state.counters["raw_wall_ns_per_draw"] = rawTotal.wallSeconds * nsPerDraw;
+  state.counters["ratio"] = rawTotal.cpuSeconds > 0 ? rhiTotal.cpuSeconds / rawTotal.cpuSeconds : 0.0;
   // A refused draw would make the RHI look cheap: any error or warning fails the benchmark.
-  if (scene.ErrorCount() != 0) state.SkipWithError(("the RHI reported: " + scene.Errors().front()).c_str());
-}
-
-void BM_RawVulkanDraw(benchmark::State& state) {
-  RawVulkan& raw = Raw();
-  MeasureBatches(state, [&] { raw.RecordBatch(kDrawsPerBatch, false); }, [&] { raw.SubmitAndWait(); });
+  if (rhi.ErrorCount() != 0) state.SkipWithError(("the RHI reported: " + rhi.Errors().front()).c_str());
 }
 
 // Diagnostic, not the baseline: raw Vulkan that re-sets viewport, scissor,
 // topology and primitive restart after every pipeline bind, as the RHI did before 538b266.
 void BM_RawVulkanDrawReemit(benchmark::State& state) {
   RawVulkan& raw = Raw();
-  MeasureBatches(state, [&] { raw.RecordBatch(kDrawsPerBatch, true); }, [&] { raw.SubmitAndWait(); });
+  double cpuSeconds = 0;
+  int64_t draws = 0;
+  for (auto _ : state) {
+    const Timed batch = TimeRecording([&] { raw.RecordBatch(kDrawsPerBatch, true); });
+    raw.SubmitAndWait();
+    state.SetIterationTime(batch.cpuSeconds);
+    cpuSeconds += batch.cpuSeconds;
+    draws += kDrawsPerBatch;
+  }
+  state.SetItemsProcessed(draws);
+  state.counters["raw_ns_per_draw"] = draws ? cpuSeconds * 1e9 / static_cast<double>(draws) : 0.0;
 }
 
-BENCHMARK(BM_RhiDraw)->UseManualTime()->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_RawVulkanDraw)->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_RhiVsRaw)->UseManualTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_RawVulkanDrawReemit)->UseManualTime()->Unit(benchmark::kMicrosecond);
 
 // ---------------------------------------------------------------------------
-// Reporting: the console output, plus the medians of ns_per_draw per benchmark.
+// Reporting: the console output, plus each counter's values per benchmark.
 
 class CapturingReporter : public benchmark::ConsoleReporter {
  public:
@@ -282,36 +306,38 @@ class CapturingReporter : public benchmark::ConsoleReporter {
   void ReportRuns(const std::vector<Run>& runs) override {
     for (const Run& run : runs) {
       if (run.error_occurred) continue;
-      auto counter = run.counters.find("ns_per_draw");
-      if (counter == run.counters.end()) continue;
-      const std::string& name = run.run_name.function_name;
-      if (run.run_type == Run::RT_Aggregate) {
-        if (run.aggregate_name == "median") medians_[name] = counter->second.value;
-      } else {
-        samples_[name].push_back(counter->second.value);
+      const bool median = run.run_type == Run::RT_Aggregate && run.aggregate_name == "median";
+      if (run.run_type != Run::RT_Iteration && !median) continue;
+      for (const auto& [counter, value] : run.counters) {
+        const std::string key = run.run_name.function_name + "/" + counter;
+        (median ? medians_[key] : samples_[key]).push_back(value.value);
       }
     }
     ConsoleReporter::ReportRuns(runs);
   }
 
-  // The reported median if there was one, else the median of the repetitions seen.
-  bool Median(const std::string& name, double* value) const {
-    if (auto it = medians_.find(name); it != medians_.end()) {
-      *value = it->second;
-      return true;
-    }
-    auto it = samples_.find(name);
-    if (it == samples_.end() || it->second.empty()) return false;
+  // The median, minimum and maximum of a counter over the repetitions seen;
+  // with --benchmark_report_aggregates_only only the median is known (min = max = median).
+  struct Spread {
+    double median = 0, min = 0, max = 0;
+  };
+  bool Counter(const std::string& benchmark, const std::string& counter, Spread* spread) const {
+    const std::string key = benchmark + "/" + counter;
+    const auto& values = samples_.contains(key) ? samples_ : medians_;
+    auto it = values.find(key);
+    if (it == values.end() || it->second.empty()) return false;
     std::vector<double> v = it->second;
     std::sort(v.begin(), v.end());
     const size_t n = v.size();
-    *value = n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
+    spread->median = n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
+    spread->min = v.front();
+    spread->max = v.back();
     return true;
   }
 
  private:
-  std::map<std::string, double> medians_;
-  std::map<std::string, std::vector<double>> samples_;
+  std::map<std::string, std::vector<double>> samples_;  // per repetition
+  std::map<std::string, std::vector<double>> medians_;  // the median aggregate
 };
 
 }  // namespace
@@ -325,16 +351,18 @@ int main(int argc, char** argv) {
                                                            : benchmark::ConsoleReporter::OO_Tabular);
   benchmark::RunSpecifiedBenchmarks(&reporter);
 
-  double rhiNs = 0, rawNs = 0, reemitNs = 0;
-  const bool haveRhi = reporter.Median("BM_RhiDraw", &rhiNs);
-  const bool haveRaw = reporter.Median("BM_RawVulkanDraw", &rawNs);
-  if (haveRhi && haveRaw && rawNs > 0) {
-    std::printf("RHI / raw per-draw CPU cost: %.2f (RHI %.0f ns, raw %.0f ns)\n", rhiNs / rawNs, rhiNs, rawNs);
-    if (reporter.Median("BM_RawVulkanDrawReemit", &reemitNs))
+  using Spread = bench::CapturingReporter::Spread;
+  Spread ratio, rhiNs, rawNs, reemitNs;
+  if (reporter.Counter("BM_RhiVsRaw", "ratio", &ratio) && reporter.Counter("BM_RhiVsRaw", "rhi_ns_per_draw", &rhiNs) &&
+      reporter.Counter("BM_RhiVsRaw", "raw_ns_per_draw", &rawNs)) {
+    std::printf("RHI / raw per-draw CPU cost: %.2f (median of the repetitions' ratios, min %.2f, max %.2f; "
+                "medians RHI %.0f ns, raw %.0f ns)\n",
+                ratio.median, ratio.min, ratio.max, rhiNs.median, rawNs.median);
+    if (reporter.Counter("BM_RawVulkanDrawReemit", "raw_ns_per_draw", &reemitNs))
       std::printf("  diagnostic: raw re-emitting dynamic state per pipeline bind: %.0f ns (RHI / that: %.2f)\n",
-                  reemitNs, rhiNs / reemitNs);
+                  reemitNs.median, rhiNs.median / reemitNs.median);
   } else {
-    std::printf("RHI / raw per-draw CPU cost: not available (run both BM_RhiDraw and BM_RawVulkanDraw)\n");
+    std::printf("RHI / raw per-draw CPU cost: not available (run BM_RhiVsRaw)\n");
   }
   if (bench::gRhi || bench::gRaw)
     std::printf("Vulkan device: RHI \"%s\", raw \"%s\"\n", bench::gRhi ? bench::gRhi->AdapterName().c_str() : "-",

@@ -5,8 +5,14 @@
 //   Table 3 (colored): Table 1 plus RT2 (the frame) = a*(1 - t.rgb)
 // with w = clamp(pow(min(1, a*10) + 0.01, 3) * 1e8 * pow(1 - z*0.9, 3), 1e-2, 3e3), z = SV_Position.z.
 
+// pow(x, 3.0) written as x * x * x: both bases are positive, so it is the same
+// function, and glslang keeps a literal pow as SPIR-V Pow, which drivers evaluate
+// as exp2(3 * log2(x)) - two transcendentals per fragment (lavapipe's are long
+// polynomial sequences) for what fxc emits as two multiplies.
+float Cube(float x) { return x * x * x; }
+
 float WboitWeight(float a, float z) {
-  return clamp(pow(min(1.0, a * 10.0) + 0.01, 3.0) * 1e8 * pow(1.0 - z * 0.9, 3.0), 1e-2, 3e3);
+  return clamp(Cube(min(1.0, a * 10.0) + 0.01) * 1e8 * Cube(1.0 - z * 0.9), 1e-2, 3e3);
 }
 
 struct WboitOut {

@@ -1,0 +1,355 @@
+// blend_fill_bench: what the output merger costs per blended render target on
+// this device, apart from any demo's shaders.
+//
+// Document 000's Table 1 (WBOIT) blends every translucent fragment into two
+// render targets and Table 3 (colored OIT) into three, where plain alpha
+// blending writes one. How much that costs is a property of the device's
+// raster back end, so this probe measures it with nothing else in the way: a
+// pixel shader that writes small values into 1-3 targets, `--draws` layers of
+// screen-covering tiles per measurement, ONE/ONE blending (or the named
+// factors, or none), GPU time from
+// TIMESTAMP queries inside a TIMESTAMP_DISJOINT query, the median of
+// `--repeats` measurements per target set.
+//
+//   blend_fill_bench [--size WxH] [--draws N] [--repeats R] [--varying] [--depth] [--overlap L] [--sampled]
+//
+// The device is picked as everywhere else (RHI_DEVICE, else lavapipe).
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "hlsl/hlsl_compiler.h"
+#include "rhi/rhi.h"
+
+namespace {
+
+using rhi::ComPtr;
+
+constexpr const char* kHlsl = R"hlsl(
+// Varying = 1 (--varying): outputs differ from pixel to pixel. Layers (--overlap):
+// the screen is a 16x9 grid of tiles, each drawn Layers times in a row before
+// the next, so consecutive primitives blend into the same pixels as overlapping
+// particles do (1: every primitive covers new pixels).
+cbuffer Probe : register(b0) {
+  float Varying;
+  uint Layers;
+};
+
+float4 VSTiles(uint id : SV_VertexID) : SV_Position {
+  const uint2 grid = uint2(16, 9);
+  const float2 corners[6] = {float2(0, 0), float2(1, 0), float2(0, 1), float2(0, 1), float2(1, 0), float2(1, 1)};
+  uint tile = (id / 6) / Layers;
+  float2 p = (float2(tile % grid.x, tile / grid.x) + corners[id % 6]) / float2(grid);
+  return float4(p * float2(2, -2) + float2(-1, 1), 0, 1);
+}
+
+// Small values, so ONE/ONE blending into UNORM targets stays unsaturated for a while.
+float4 Value(float4 pos) { return (float4(1, 2, 3, 4) + Varying * frac(pos.xyxy * 0.37)) / 4096.0; }
+
+float4 PSOneTarget(float4 pos : SV_Position) : SV_Target0 { return Value(pos); }
+
+struct TwoTargets { float4 a : SV_Target0; float4 b : SV_Target1; };
+TwoTargets PSTwoTargets(float4 pos : SV_Position) { TwoTargets o; o.a = Value(pos); o.b = Value(pos.yxzw); return o; }
+
+struct ThreeTargets { float4 a : SV_Target0; float4 b : SV_Target1; float4 c : SV_Target2; };
+ThreeTargets PSThreeTargets(float4 pos : SV_Position) {
+  ThreeTargets o; o.a = Value(pos); o.b = Value(pos.yxzw); o.c = Value(pos.xxyy); return o;
+}
+)hlsl";
+
+// One render target: its format and its blend (D3D11 factors; Src ONE, Dest
+// ZERO with blending off).
+struct Target {
+  rhi::DXGI_FORMAT format;
+  bool blend;
+  rhi::BLEND src = rhi::BLEND_ONE;
+  rhi::BLEND dest = rhi::BLEND_ONE;
+};
+
+struct TargetSet {
+  const char* name;
+  std::vector<Target> targets;
+};
+
+const std::vector<TargetSet>& TargetSets() {
+  using enum rhi::DXGI_FORMAT;
+  using enum rhi::BLEND;
+  const Target rgba8{DXGI_FORMAT_R8G8B8A8_UNORM, true}, rgba16f{DXGI_FORMAT_R16G16B16A16_FLOAT, true},
+      r8{DXGI_FORMAT_R8_UNORM, true}, revealage{DXGI_FORMAT_R8_UNORM, true, BLEND_ZERO, BLEND_INV_SRC_COLOR},
+      frame{DXGI_FORMAT_R8G8B8A8_UNORM, true, BLEND_ZERO, BLEND_INV_SRC_COLOR};
+  static const std::vector<TargetSet> sets = {
+      {"RGBA8, blending off", {{DXGI_FORMAT_R8G8B8A8_UNORM, false}}},
+      {"RGBA8 (alpha blending's one target)", {rgba8}},
+      {"RGBA16F", {rgba16f}},
+      {"R8", {r8}},
+      {"R8 ZERO/INV_SRC_COLOR", {revealage}},
+      {"RGBA8 + RGBA8", {rgba8, rgba8}},
+      {"RGBA8 + R8", {rgba8, r8}},
+      {"RGBA8 + R8 ZERO/INV_SRC_COLOR", {rgba8, revealage}},
+      {"RGBA16F + R8", {rgba16f, r8}},
+      {"Table 1: RGBA16F + R8 ZERO/INV_SRC_COLOR", {rgba16f, revealage}},
+      {"Table 3: Table 1 + RGBA8 ZERO/INV_SRC_COLOR", {rgba16f, revealage, frame}},
+  };
+  return sets;
+}
+
+[[noreturn]] void Fail(const std::string& what) {
+  std::fprintf(stderr, "blend_fill_bench: %s\n", what.c_str());
+  std::exit(2);
+}
+
+void Check(rhi::HRESULT hr, const char* what) {
+  if (hr != rhi::S_OK) Fail(std::string(what) + " failed");
+}
+
+std::vector<uint32_t> Compile(const char* entry, const char* profile) {
+  hlsl::CompileRequest request;
+  request.source = kHlsl;
+  request.fileName = "blend_fill_bench.hlsl";
+  request.entryPoint = entry;
+  request.profile = profile;
+  hlsl::CompileResult result = hlsl::CompileHlsl(request);
+  if (!result.ok) Fail(std::string("compiling ") + entry + ":\n" + result.FormatErrors());
+  return std::move(result.spirv);
+}
+
+struct Options {
+  rhi::UINT width = 1280, height = 720;
+  int draws = 32;
+  int repeats = 7;
+  bool varying = false;  // outputs differ from pixel to pixel
+  bool depth = false;    // a D32 depth buffer, tested LESS against 1.0 and not written (the 3D pass's state)
+  int overlap = 1;       // each tile drawn this many times in a row (divides draws)
+  bool sampled = false;  // targets also BIND_SHADER_RESOURCE, as the OIT targets the compose pass reads
+};
+
+Options ParseOptions(int argc, char** argv) {
+  Options options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const char* value = i + 1 < argc ? argv[i + 1] : nullptr;
+    if (arg == "--size" && value && std::sscanf(value, "%ux%u", &options.width, &options.height) == 2 &&
+        options.width > 0 && options.height > 0) {
+      ++i;
+    } else if (arg == "--draws" && value && (options.draws = std::atoi(value)) > 0) {
+      ++i;
+    } else if (arg == "--repeats" && value && (options.repeats = std::atoi(value)) > 0) {
+      ++i;
+    } else if (arg == "--overlap" && value && (options.overlap = std::atoi(value)) > 0) {
+      ++i;
+    } else if (arg == "--varying") {
+      options.varying = true;
+    } else if (arg == "--depth") {
+      options.depth = true;
+    } else if (arg == "--sampled") {
+      options.sampled = true;
+    } else {
+      Fail("usage: blend_fill_bench [--size WxH] [--draws N>0] [--repeats R>0] [--varying] [--depth] "
+           "[--overlap L dividing N] [--sampled] (bad argument '" +
+           arg + "')");
+    }
+  }
+  if (options.draws % options.overlap != 0) Fail("--overlap must divide --draws");
+  return options;
+}
+
+template <class T>
+T WaitForQuery(rhi::DeviceContext* ctx, rhi::Query* query) {
+  T data{};
+  rhi::HRESULT hr;
+  while ((hr = ctx->GetData(query, &data, sizeof data, 0)) == rhi::S_FALSE) {
+  }
+  Check(hr, "GetData");
+  return data;
+}
+
+class Probe {
+ public:
+  Probe(const Options& options) : options_(options) {
+    rhi::DEVICE_OPTIONS deviceOptions;
+    deviceOptions.OnMessage = [](rhi::MESSAGE_CATEGORY, rhi::MESSAGE_SEVERITY severity, const char* text) {
+      if (severity <= rhi::MESSAGE_SEVERITY_WARNING) Fail(text);
+    };
+    Check(rhi::CreateDevice(&deviceOptions, device_.GetAddressOf(), context_.GetAddressOf()), "CreateDevice");
+    const std::vector<uint32_t> vs = Compile("VSTiles", "vs_5_0");
+    Check(device_->CreateVertexShader(vs.data(), vs.size() * 4, nullptr, vs_.GetAddressOf()), "CreateVertexShader");
+    const char* pixelShaders[3] = {"PSOneTarget", "PSTwoTargets", "PSThreeTargets"};
+    for (int i = 0; i < 3; ++i) {
+      const std::vector<uint32_t> ps = Compile(pixelShaders[i], "ps_5_0");
+      Check(device_->CreatePixelShader(ps.data(), ps.size() * 4, nullptr, ps_[i].GetAddressOf()), "CreatePixelShader");
+    }
+    struct {
+      float varying;
+      uint32_t layers;
+      uint32_t pad[2];
+    } probeConstants{options.varying ? 1.0f : 0.0f, static_cast<uint32_t>(options.overlap), {}};
+    rhi::BUFFER_DESC cbDesc{sizeof probeConstants, rhi::USAGE_IMMUTABLE, rhi::BIND_CONSTANT_BUFFER, 0, 0, 0};
+    rhi::SUBRESOURCE_DATA cbData{&probeConstants, 0, 0};
+    Check(device_->CreateBuffer(&cbDesc, &cbData, constants_.GetAddressOf()), "CreateBuffer");
+    if (options.depth) CreateDepthBuffer();
+    rhi::RASTERIZER_DESC noCull{};
+    noCull.CullMode = rhi::CULL_NONE;
+    Check(device_->CreateRasterizerState(&noCull, rasterizer_.GetAddressOf()), "CreateRasterizerState");
+    rhi::DEPTH_STENCIL_DESC depthState{};
+    depthState.DepthEnable = options.depth ? rhi::TRUE : rhi::FALSE;
+    depthState.DepthWriteMask = rhi::DEPTH_WRITE_MASK_ZERO;
+    depthState.DepthFunc = rhi::COMPARISON_LESS;
+    Check(device_->CreateDepthStencilState(&depthState, depth_.GetAddressOf()), "CreateDepthStencilState");
+    rhi::QUERY_DESC disjointDesc{rhi::QUERY_TIMESTAMP_DISJOINT, 0}, stampDesc{rhi::QUERY_TIMESTAMP, 0};
+    Check(device_->CreateQuery(&disjointDesc, disjoint_.GetAddressOf()), "CreateQuery(TIMESTAMP_DISJOINT)");
+    Check(device_->CreateQuery(&stampDesc, begin_.GetAddressOf()), "CreateQuery(TIMESTAMP)");
+    Check(device_->CreateQuery(&stampDesc, end_.GetAddressOf()), "CreateQuery(TIMESTAMP)");
+  }
+
+  std::string AdapterName() { return device_->GetAdapterName(); }
+
+  // The median GPU milliseconds of `repeats` measurements of `draws` screen-covering
+  // triangles into the set (one untimed measurement first builds the pipeline).
+  double MedianMilliseconds(const TargetSet& set) {
+    std::vector<ComPtr<rhi::Texture2D>> textures;
+    std::vector<ComPtr<rhi::RenderTargetView>> views;
+    std::vector<rhi::RenderTargetView*> bound;
+    for (const Target& target : set.targets) {
+      rhi::TEXTURE2D_DESC desc{};
+      desc.Width = options_.width;
+      desc.Height = options_.height;
+      desc.MipLevels = desc.ArraySize = 1;
+      desc.Format = target.format;
+      desc.SampleDesc.Count = 1;
+      desc.Usage = rhi::USAGE_DEFAULT;
+      desc.BindFlags = rhi::BIND_RENDER_TARGET | (options_.sampled ? rhi::BIND_SHADER_RESOURCE : 0u);
+      textures.emplace_back();
+      Check(device_->CreateTexture2D(&desc, nullptr, textures.back().GetAddressOf()), "CreateTexture2D");
+      views.emplace_back();
+      Check(device_->CreateRenderTargetView(textures.back().Get(), nullptr, views.back().GetAddressOf()),
+            "CreateRenderTargetView");
+      bound.push_back(views.back().Get());
+    }
+    ComPtr<rhi::BlendState> blend;
+    const rhi::BLEND_DESC blendDesc = BlendDescOf(set);
+    Check(device_->CreateBlendState(&blendDesc, blend.GetAddressOf()), "CreateBlendState");
+    std::vector<double> milliseconds;
+    for (int i = 0; i <= options_.repeats; ++i) {
+      const double ms = MeasureOnce(bound, blend.Get());
+      if (i > 0 && ms > 0) milliseconds.push_back(ms);
+    }
+    context_->ClearState();
+    if (milliseconds.empty()) Fail(std::string("every measurement of ") + set.name + " was disjoint");
+    std::sort(milliseconds.begin(), milliseconds.end());
+    return milliseconds[milliseconds.size() / 2];
+  }
+
+ private:
+  // D3D11 forbids colour factors for alpha: each colour factor's alpha twin.
+  static rhi::BLEND AlphaFactor(rhi::BLEND colorFactor) {
+    switch (colorFactor) {
+      case rhi::BLEND_SRC_COLOR: return rhi::BLEND_SRC_ALPHA;
+      case rhi::BLEND_INV_SRC_COLOR: return rhi::BLEND_INV_SRC_ALPHA;
+      default: return colorFactor;
+    }
+  }
+
+  static rhi::BLEND_DESC BlendDescOf(const TargetSet& set) {
+    rhi::BLEND_DESC desc{};
+    desc.IndependentBlendEnable = rhi::TRUE;
+    for (size_t i = 0; i < set.targets.size(); ++i) {
+      const Target& target = set.targets[i];
+      rhi::RENDER_TARGET_BLEND_DESC& rt = desc.RenderTarget[i];
+      rt.BlendEnable = target.blend ? rhi::TRUE : rhi::FALSE;
+      if (!target.blend) continue;
+      rt.SrcBlend = target.src;
+      rt.DestBlend = target.dest;
+      rt.SrcBlendAlpha = AlphaFactor(target.src);
+      rt.DestBlendAlpha = AlphaFactor(target.dest);
+    }
+    return desc;
+  }
+
+  void CreateDepthBuffer() {
+    rhi::TEXTURE2D_DESC desc{};
+    desc.Width = options_.width;
+    desc.Height = options_.height;
+    desc.MipLevels = desc.ArraySize = 1;
+    desc.Format = rhi::DXGI_FORMAT_D32_FLOAT;
+    desc.SampleDesc.Count = 1;
+    desc.Usage = rhi::USAGE_DEFAULT;
+    desc.BindFlags = rhi::BIND_DEPTH_STENCIL;
+    Check(device_->CreateTexture2D(&desc, nullptr, depthTexture_.GetAddressOf()), "CreateTexture2D (depth)");
+    Check(device_->CreateDepthStencilView(depthTexture_.Get(), nullptr, depthView_.GetAddressOf()),
+          "CreateDepthStencilView");
+  }
+
+  // GPU milliseconds of one measurement, or 0 when the timestamps were disjoint.
+  double MeasureOnce(const std::vector<rhi::RenderTargetView*>& targets, rhi::BlendState* blend) {
+    rhi::DeviceContext* ctx = context_.Get();
+    const float clear[4] = {0, 0, 0, 0};
+    for (rhi::RenderTargetView* target : targets) ctx->ClearRenderTargetView(target, clear);
+    if (depthView_) ctx->ClearDepthStencilView(depthView_.Get(), rhi::CLEAR_DEPTH, 1.0f, 0);
+    ctx->OMSetRenderTargets(static_cast<rhi::UINT>(targets.size()), targets.data(), depthView_.Get());
+    ctx->OMSetBlendState(blend, nullptr, rhi::DEFAULT_SAMPLE_MASK);
+    ctx->OMSetDepthStencilState(depth_.Get(), 0);
+    ctx->RSSetState(rasterizer_.Get());
+    const rhi::VIEWPORT viewport{0, 0, static_cast<float>(options_.width), static_cast<float>(options_.height), 0, 1};
+    ctx->RSSetViewports(1, &viewport);
+    ctx->IASetInputLayout(nullptr);
+    ctx->IASetPrimitiveTopology(rhi::PRIMITIVE_TOPOLOGY_TRIANGLELIST);
+    ctx->VSSetShader(vs_.Get(), nullptr, 0);
+    ctx->PSSetShader(ps_[targets.size() - 1].Get(), nullptr, 0);
+    rhi::Buffer* constants = constants_.Get();
+    ctx->VSSetConstantBuffers(0, 1, &constants);
+    ctx->PSSetConstantBuffers(0, 1, &constants);
+    ctx->Begin(disjoint_.Get());
+    ctx->End(begin_.Get());
+    // Each draw covers the screen `overlap` times: 16x9 tiles of 6 vertices each.
+    const rhi::UINT vertices = 6 * 16 * 9 * static_cast<rhi::UINT>(options_.overlap);
+    for (int i = 0; i < options_.draws / options_.overlap; ++i) ctx->Draw(vertices, 0);
+    ctx->End(end_.Get());
+    ctx->End(disjoint_.Get());
+    ctx->Flush();
+    const auto frequency = WaitForQuery<rhi::QUERY_DATA_TIMESTAMP_DISJOINT>(ctx, disjoint_.Get());
+    const auto t0 = WaitForQuery<rhi::UINT64>(ctx, begin_.Get());
+    const auto t1 = WaitForQuery<rhi::UINT64>(ctx, end_.Get());
+    if (frequency.Disjoint || frequency.Frequency == 0) return 0;
+    return 1000.0 * static_cast<double>(t1 - t0) / static_cast<double>(frequency.Frequency);
+  }
+
+  Options options_;
+  ComPtr<rhi::Device> device_;
+  ComPtr<rhi::DeviceContext> context_;
+  ComPtr<rhi::VertexShader> vs_;
+  ComPtr<rhi::PixelShader> ps_[3];
+  ComPtr<rhi::Buffer> constants_;
+  ComPtr<rhi::Texture2D> depthTexture_;
+  ComPtr<rhi::DepthStencilView> depthView_;
+  ComPtr<rhi::RasterizerState> rasterizer_;
+  ComPtr<rhi::DepthStencilState> depth_;
+  ComPtr<rhi::Query> disjoint_, begin_, end_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options options = ParseOptions(argc, argv);
+  Probe probe(options);
+  const double fragments = static_cast<double>(options.draws) * options.width * options.height;
+  std::printf("device: %s; %d screen-covering layers of 16x9 tiles at %ux%u (%.1f M fragments), median of %d; ",
+              probe.AdapterName().c_str(), options.draws, options.width, options.height, fragments * 1e-6,
+              options.repeats);
+  std::printf("outputs %s, depth test %s, each tile drawn %d time(s) in a row, targets %s\n\n",
+              options.varying ? "varying per pixel" : "uniform", options.depth ? "LESS against 1.0, no write" : "off",
+              options.overlap, options.sampled ? "also shader resources" : "render targets only");
+  std::printf("| render targets (ONE/ONE unless named) | GPU ms | G fragments/s | time / one RGBA8 |\n");
+  std::printf("|---|---:|---:|---:|\n");
+  double reference = 0;
+  for (const TargetSet& set : TargetSets()) {
+    const double ms = probe.MedianMilliseconds(set);
+    if (reference == 0 && set.targets.size() == 1 && set.targets[0].blend) reference = ms;
+    char relative[32] = "-";
+    if (reference > 0) std::snprintf(relative, sizeof relative, "%.2f", ms / reference);
+    std::printf("| %s | %.3f | %.2f | %s |\n", set.name, ms, fragments / (ms * 1e-3) * 1e-9, relative);
+  }
+  return 0;
+}

@@ -7,17 +7,18 @@
 // raster back end, so this probe measures it with nothing else in the way: a
 // pixel shader that writes small values into 1-3 targets, `--draws` layers of
 // screen-covering tiles per measurement, ONE/ONE blending (or the named
-// factors, or none), GPU time from
-// TIMESTAMP queries inside a TIMESTAMP_DISJOINT query, the median of
-// `--repeats` measurements per target set.
+// factors, or none). GPU time comes from TIMESTAMP queries inside a
+// TIMESTAMP_DISJOINT query (the median of `--repeats` measurements per target
+// set), the fragment count from an OCCLUSION query.
 //
-//   blend_fill_bench [--size WxH] [--draws N] [--repeats R] [--varying] [--depth] [--overlap L] [--sampled]
+//   blend_fill_bench [--size WxH] [--draws N] [--repeats R] [--overlap L]
+//                    [--jitter] [--gs] [--large] [--varying] [--depth] [--sampled]
 //
-// The device is picked as everywhere else (RHI_DEVICE, else lavapipe).
+// The options move the probe towards the smoke pass one property at a time
+// (see Options). The device is picked as everywhere else (RHI_DEVICE, else lavapipe).
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <string>
 #include <vector>
 
@@ -32,31 +33,73 @@ constexpr const char* kHlsl = R"hlsl(
 // Varying = 1 (--varying): outputs differ from pixel to pixel. Layers (--overlap):
 // the screen is a 16x9 grid of tiles, each drawn Layers times in a row before
 // the next, so consecutive primitives blend into the same pixels as overlapping
-// particles do (1: every primitive covers new pixels).
+// particles do (1: every primitive covers new pixels). Jitter = 1 (--jitter):
+// each quad moves by up to half a tile, so quads overlap at random offsets as
+// billboards do. Scale (--large): SV_Target0's output is about 1000 instead of
+// 1/1000, as WBOIT's weighted accum colours are (an RGBA16F sum then reaches infinity).
 cbuffer Probe : register(b0) {
   float Varying;
   uint Layers;
+  float Jitter;
+  float Scale;
 };
 
-float4 VSTiles(uint id : SV_VertexID) : SV_Position {
+// Clip-space corner of quad `quad` (tile quad / Layers), corner in [0, 1]^2.
+float4 TileCorner(uint quad, float2 corner) {
   const uint2 grid = uint2(16, 9);
-  const float2 corners[6] = {float2(0, 0), float2(1, 0), float2(0, 1), float2(0, 1), float2(1, 0), float2(1, 1)};
-  uint tile = (id / 6) / Layers;
-  float2 p = (float2(tile % grid.x, tile / grid.x) + corners[id % 6]) / float2(grid);
+  uint tile = quad / Layers;
+  float2 jitter = Jitter * (frac(float2(quad * 0.6180339, quad * 0.3819660)) - 0.5);
+  float2 p = (float2(tile % grid.x, tile / grid.x) + corner + jitter) / float2(grid);
   return float4(p * float2(2, -2) + float2(-1, 1), 0, 1);
 }
 
-// Small values, so ONE/ONE blending into UNORM targets stays unsaturated for a while.
+float4 VSTiles(uint id : SV_VertexID) : SV_Position {
+  const float2 corners[6] = {float2(0, 0), float2(1, 0), float2(0, 1), float2(0, 1), float2(1, 0), float2(1, 1)};
+  return TileCorner(id / 6, corners[id % 6]);
+}
+
+// --gs: the tiles travel as points and a geometry shader expands each into a
+// quad, as document 000's billboard GS does with particles.
+struct TilePoint {
+  uint quad : QUAD;
+};
+
+TilePoint VSTilePoints(uint id : SV_VertexID) {
+  TilePoint p;
+  p.quad = id;
+  return p;
+}
+
+struct QuadVertex {
+  float4 position : SV_Position;
+};
+
+[maxvertexcount(4)]
+void GSTileQuad(point TilePoint input[1], inout TriangleStream<QuadVertex> stream) {
+  const float2 corners[4] = {float2(0, 0), float2(1, 0), float2(0, 1), float2(1, 1)};
+  for (uint i = 0; i < 4; ++i) {
+    QuadVertex v;
+    v.position = TileCorner(input[0].quad, corners[i]);
+    stream.Append(v);
+  }
+}
+
+// Small values (about 1/1000), so ONE/ONE blending into UNORM targets stays
+// unsaturated for a while. SV_Target0 is scaled by Scale: with --large it gets
+// about 1000, as Table 1's weighted accum colour does, while the other targets
+// keep values in [0, 1], as revealage's alpha does.
 float4 Value(float4 pos) { return (float4(1, 2, 3, 4) + Varying * frac(pos.xyxy * 0.37)) / 4096.0; }
 
-float4 PSOneTarget(float4 pos : SV_Position) : SV_Target0 { return Value(pos); }
+float4 PSOneTarget(float4 pos : SV_Position) : SV_Target0 { return Scale * Value(pos); }
 
 struct TwoTargets { float4 a : SV_Target0; float4 b : SV_Target1; };
-TwoTargets PSTwoTargets(float4 pos : SV_Position) { TwoTargets o; o.a = Value(pos); o.b = Value(pos.yxzw); return o; }
+TwoTargets PSTwoTargets(float4 pos : SV_Position) {
+  TwoTargets o; o.a = Scale * Value(pos); o.b = Value(pos.yxzw); return o;
+}
 
 struct ThreeTargets { float4 a : SV_Target0; float4 b : SV_Target1; float4 c : SV_Target2; };
 ThreeTargets PSThreeTargets(float4 pos : SV_Position) {
-  ThreeTargets o; o.a = Value(pos); o.b = Value(pos.yxzw); o.c = Value(pos.xxyy); return o;
+  ThreeTargets o; o.a = Scale * Value(pos); o.b = Value(pos.yxzw); o.c = Value(pos.xxyy); return o;
 }
 )hlsl";
 
@@ -124,6 +167,9 @@ struct Options {
   bool depth = false;    // a D32 depth buffer, tested LESS against 1.0 and not written (the 3D pass's state)
   int overlap = 1;       // each tile drawn this many times in a row (divides draws)
   bool sampled = false;  // targets also BIND_SHADER_RESOURCE, as the OIT targets the compose pass reads
+  bool geometryShader = false;  // tiles as points expanded by a GS
+  bool jitter = false;          // quads offset at random by up to half a tile
+  bool large = false;           // SV_Target0 gets ~1000 (WBOIT-like accum values)
 };
 
 Options ParseOptions(int argc, char** argv) {
@@ -146,9 +192,15 @@ Options ParseOptions(int argc, char** argv) {
       options.depth = true;
     } else if (arg == "--sampled") {
       options.sampled = true;
+    } else if (arg == "--gs") {
+      options.geometryShader = true;
+    } else if (arg == "--jitter") {
+      options.jitter = true;
+    } else if (arg == "--large") {
+      options.large = true;
     } else {
       Fail("usage: blend_fill_bench [--size WxH] [--draws N>0] [--repeats R>0] [--varying] [--depth] "
-           "[--overlap L dividing N] [--sampled] (bad argument '" +
+           "[--overlap L dividing N] [--sampled] [--gs] [--jitter] [--large] (bad argument '" +
            arg + "')");
     }
   }
@@ -174,8 +226,13 @@ class Probe {
       if (severity <= rhi::MESSAGE_SEVERITY_WARNING) Fail(text);
     };
     Check(rhi::CreateDevice(&deviceOptions, device_.GetAddressOf(), context_.GetAddressOf()), "CreateDevice");
-    const std::vector<uint32_t> vs = Compile("VSTiles", "vs_5_0");
+    const std::vector<uint32_t> vs = Compile(options.geometryShader ? "VSTilePoints" : "VSTiles", "vs_5_0");
     Check(device_->CreateVertexShader(vs.data(), vs.size() * 4, nullptr, vs_.GetAddressOf()), "CreateVertexShader");
+    if (options.geometryShader) {
+      const std::vector<uint32_t> gs = Compile("GSTileQuad", "gs_5_0");
+      Check(device_->CreateGeometryShader(gs.data(), gs.size() * 4, nullptr, gs_.GetAddressOf()),
+            "CreateGeometryShader");
+    }
     const char* pixelShaders[3] = {"PSOneTarget", "PSTwoTargets", "PSThreeTargets"};
     for (int i = 0; i < 3; ++i) {
       const std::vector<uint32_t> ps = Compile(pixelShaders[i], "ps_5_0");
@@ -184,8 +241,10 @@ class Probe {
     struct {
       float varying;
       uint32_t layers;
-      uint32_t pad[2];
-    } probeConstants{options.varying ? 1.0f : 0.0f, static_cast<uint32_t>(options.overlap), {}};
+      float jitter;
+      float scale;
+    } probeConstants{options.varying ? 1.0f : 0.0f, static_cast<uint32_t>(options.overlap),
+                     options.jitter ? 1.0f : 0.0f, options.large ? 4096.0f * 256.0f : 1.0f};
     rhi::BUFFER_DESC cbDesc{sizeof probeConstants, rhi::USAGE_IMMUTABLE, rhi::BIND_CONSTANT_BUFFER, 0, 0, 0};
     rhi::SUBRESOURCE_DATA cbData{&probeConstants, 0, 0};
     Check(device_->CreateBuffer(&cbDesc, &cbData, constants_.GetAddressOf()), "CreateBuffer");
@@ -202,9 +261,13 @@ class Probe {
     Check(device_->CreateQuery(&disjointDesc, disjoint_.GetAddressOf()), "CreateQuery(TIMESTAMP_DISJOINT)");
     Check(device_->CreateQuery(&stampDesc, begin_.GetAddressOf()), "CreateQuery(TIMESTAMP)");
     Check(device_->CreateQuery(&stampDesc, end_.GetAddressOf()), "CreateQuery(TIMESTAMP)");
+    rhi::QUERY_DESC occlusionDesc{rhi::QUERY_OCCLUSION, 0};
+    Check(device_->CreateQuery(&occlusionDesc, samples_.GetAddressOf()), "CreateQuery(OCCLUSION)");
   }
 
   std::string AdapterName() { return device_->GetAdapterName(); }
+  // Fragments that reached the targets in the latest measurement (an OCCLUSION query).
+  double Fragments() const { return static_cast<double>(fragments_); }
 
   // The median GPU milliseconds of `repeats` measurements of `draws` screen-covering
   // triangles into the set (one untimed measurement first builds the pipeline).
@@ -238,6 +301,7 @@ class Probe {
     }
     context_->ClearState();
     if (milliseconds.empty()) Fail(std::string("every measurement of ") + set.name + " was disjoint");
+    if (fragments_ == 0) Fail(std::string("no fragment reached the targets of ") + set.name);
     std::sort(milliseconds.begin(), milliseconds.end());
     return milliseconds[milliseconds.size() / 2];
   }
@@ -295,23 +359,28 @@ class Probe {
     const rhi::VIEWPORT viewport{0, 0, static_cast<float>(options_.width), static_cast<float>(options_.height), 0, 1};
     ctx->RSSetViewports(1, &viewport);
     ctx->IASetInputLayout(nullptr);
-    ctx->IASetPrimitiveTopology(rhi::PRIMITIVE_TOPOLOGY_TRIANGLELIST);
+    ctx->IASetPrimitiveTopology(gs_ ? rhi::PRIMITIVE_TOPOLOGY_POINTLIST : rhi::PRIMITIVE_TOPOLOGY_TRIANGLELIST);
     ctx->VSSetShader(vs_.Get(), nullptr, 0);
+    ctx->GSSetShader(gs_.Get(), nullptr, 0);
     ctx->PSSetShader(ps_[targets.size() - 1].Get(), nullptr, 0);
     rhi::Buffer* constants = constants_.Get();
     ctx->VSSetConstantBuffers(0, 1, &constants);
+    ctx->GSSetConstantBuffers(0, 1, &constants);
     ctx->PSSetConstantBuffers(0, 1, &constants);
     ctx->Begin(disjoint_.Get());
     ctx->End(begin_.Get());
-    // Each draw covers the screen `overlap` times: 16x9 tiles of 6 vertices each.
-    const rhi::UINT vertices = 6 * 16 * 9 * static_cast<rhi::UINT>(options_.overlap);
+    ctx->Begin(samples_.Get());
+    // Each draw covers the screen `overlap` times: 16x9 tiles of 6 vertices each (1 point with --gs).
+    const rhi::UINT vertices = (gs_ ? 1 : 6) * 16 * 9 * static_cast<rhi::UINT>(options_.overlap);
     for (int i = 0; i < options_.draws / options_.overlap; ++i) ctx->Draw(vertices, 0);
+    ctx->End(samples_.Get());
     ctx->End(end_.Get());
     ctx->End(disjoint_.Get());
     ctx->Flush();
     const auto frequency = WaitForQuery<rhi::QUERY_DATA_TIMESTAMP_DISJOINT>(ctx, disjoint_.Get());
     const auto t0 = WaitForQuery<rhi::UINT64>(ctx, begin_.Get());
     const auto t1 = WaitForQuery<rhi::UINT64>(ctx, end_.Get());
+    fragments_ = WaitForQuery<rhi::UINT64>(ctx, samples_.Get());
     if (frequency.Disjoint || frequency.Frequency == 0) return 0;
     return 1000.0 * static_cast<double>(t1 - t0) / static_cast<double>(frequency.Frequency);
   }
@@ -320,6 +389,7 @@ class Probe {
   ComPtr<rhi::Device> device_;
   ComPtr<rhi::DeviceContext> context_;
   ComPtr<rhi::VertexShader> vs_;
+  ComPtr<rhi::GeometryShader> gs_;  // with --gs only
   ComPtr<rhi::PixelShader> ps_[3];
   ComPtr<rhi::Buffer> constants_;
   ComPtr<rhi::Texture2D> depthTexture_;
@@ -327,6 +397,8 @@ class Probe {
   ComPtr<rhi::RasterizerState> rasterizer_;
   ComPtr<rhi::DepthStencilState> depth_;
   ComPtr<rhi::Query> disjoint_, begin_, end_;
+  ComPtr<rhi::Query> samples_;  // OCCLUSION: the fragments that reached the targets
+  rhi::UINT64 fragments_ = 0;   // of the latest measurement
 };
 
 }  // namespace
@@ -334,22 +406,23 @@ class Probe {
 int main(int argc, char** argv) {
   const Options options = ParseOptions(argc, argv);
   Probe probe(options);
-  const double fragments = static_cast<double>(options.draws) * options.width * options.height;
-  std::printf("device: %s; %d screen-covering layers of 16x9 tiles at %ux%u (%.1f M fragments), median of %d; ",
-              probe.AdapterName().c_str(), options.draws, options.width, options.height, fragments * 1e-6,
-              options.repeats);
-  std::printf("outputs %s, depth test %s, each tile drawn %d time(s) in a row, targets %s\n\n",
-              options.varying ? "varying per pixel" : "uniform", options.depth ? "LESS against 1.0, no write" : "off",
-              options.overlap, options.sampled ? "also shader resources" : "render targets only");
-  std::printf("| render targets (ONE/ONE unless named) | GPU ms | G fragments/s | time / one RGBA8 |\n");
-  std::printf("|---|---:|---:|---:|\n");
+  std::printf("device: %s; %d layers of 16x9 tiles covering %ux%u, median of %d; ", probe.AdapterName().c_str(),
+              options.draws, options.width, options.height, options.repeats);
+  std::printf("outputs %s%s, depth test %s, each tile drawn %d time(s) in a row%s, targets %s, tiles %s\n\n",
+              options.varying ? "varying per pixel" : "uniform", options.large ? " (SV_Target0 ~1000, the others ~1/1000)" : " (~1/1000)",
+              options.depth ? "LESS against 1.0, no write" : "off", options.overlap,
+              options.jitter ? " at random offsets" : "", options.sampled ? "also shader resources" : "render targets only",
+              options.geometryShader ? "points expanded by a GS" : "triangles");
+  std::printf("| render targets (ONE/ONE unless named) | GPU ms | M fragments | G fragments/s | time / one RGBA8 |\n");
+  std::printf("|---|---:|---:|---:|---:|\n");
   double reference = 0;
   for (const TargetSet& set : TargetSets()) {
     const double ms = probe.MedianMilliseconds(set);
     if (reference == 0 && set.targets.size() == 1 && set.targets[0].blend) reference = ms;
     char relative[32] = "-";
     if (reference > 0) std::snprintf(relative, sizeof relative, "%.2f", ms / reference);
-    std::printf("| %s | %.3f | %.2f | %s |\n", set.name, ms, fragments / (ms * 1e-3) * 1e-9, relative);
+    std::printf("| %s | %.3f | %.1f | %.2f | %s |\n", set.name, ms, probe.Fragments() * 1e-6,
+                probe.Fragments() / (ms * 1e-3) * 1e-9, relative);
   }
   return 0;
 }

@@ -33,6 +33,7 @@
 #include "fx/gs_isolation.h"
 #include "fxtool_names.h"
 #include "hlsl/hlsl_compiler.h"
+#include "rhi/query_wait.h"
 #include "rhi/rhi.h"
 #include "rhi_reference/formats.h"
 
@@ -910,8 +911,7 @@ int Run(const Options& o) {
         ctx->End(soQuery.Get());
         ctx->SOSetTargets(0, nullptr, nullptr);
         rhi::QUERY_DATA_SO_STATISTICS stats{};
-        while (ctx->GetData(soQuery.Get(), &stats, sizeof stats, 0) == rhi::S_FALSE) {
-        }
+        if (!Check(rhi::WaitForData(ctx.Get(), soQuery.Get(), &stats), "GetData(SO_STATISTICS)")) return 3;
         // Read the first vertices back through a staging buffer.
         rhi::BUFFER_DESC sd{};
         sd.ByteWidth = std::max(16u, o.soBytes);

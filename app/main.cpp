@@ -37,6 +37,7 @@
 
 #include "hlsl/hlsl_compiler.h"
 #include "rhi/capture.h"
+#include "rhi/query_wait.h"
 #include "rhi/rhi.h"
 #include "rhi/swap_chain.h"
 #include "scene_params.h"
@@ -411,16 +412,6 @@ double Median(std::vector<double> values) {
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
-template <class T>
-T WaitForQuery(rhi::DeviceContext* ctx, rhi::Query* query) {
-  T data{};
-  rhi::HRESULT hr;
-  while ((hr = ctx->GetData(query, &data, sizeof data, 0)) == rhi::S_FALSE) {
-  }
-  Check(hr, "GetData");
-  return data;
-}
-
 int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, Demo& demo, int frames) {
   rhi::QUERY_DESC disjointDesc{rhi::QUERY_TIMESTAMP_DISJOINT, 0}, tsDesc{rhi::QUERY_TIMESTAMP, 0};
   ComPtr<rhi::Query> disjoint, begin, end;
@@ -439,9 +430,11 @@ int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, Demo& demo, int frame
     ctx->Flush();
     const auto recorded = std::chrono::steady_clock::now();
     // Waiting for the queries also keeps frames from piling up.
-    const auto dj = WaitForQuery<rhi::QUERY_DATA_TIMESTAMP_DISJOINT>(ctx, disjoint.Get());
-    const auto t0 = WaitForQuery<rhi::UINT64>(ctx, begin.Get());
-    const auto t1 = WaitForQuery<rhi::UINT64>(ctx, end.Get());
+    rhi::QUERY_DATA_TIMESTAMP_DISJOINT dj{};
+    rhi::UINT64 t0 = 0, t1 = 0;
+    Check(rhi::WaitForData(ctx, disjoint.Get(), &dj), "GetData(TIMESTAMP_DISJOINT)");
+    Check(rhi::WaitForData(ctx, begin.Get(), &t0), "GetData(TIMESTAMP)");
+    Check(rhi::WaitForData(ctx, end.Get(), &t1), "GetData(TIMESTAMP)");
     cpuMs.push_back(std::chrono::duration<double, std::milli>(recorded - start).count());
     if (dj.Disjoint || dj.Frequency == 0) {
       ++disjointFrames;

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "hlsl/hlsl_compiler.h"
+#include "rhi/query_wait.h"
 #include "rhi/rhi.h"
 
 namespace {
@@ -208,16 +209,6 @@ Options ParseOptions(int argc, char** argv) {
   return options;
 }
 
-template <class T>
-T WaitForQuery(rhi::DeviceContext* ctx, rhi::Query* query) {
-  T data{};
-  rhi::HRESULT hr;
-  while ((hr = ctx->GetData(query, &data, sizeof data, 0)) == rhi::S_FALSE) {
-  }
-  Check(hr, "GetData");
-  return data;
-}
-
 class Probe {
  public:
   Probe(const Options& options) : options_(options) {
@@ -377,10 +368,12 @@ class Probe {
     ctx->End(end_.Get());
     ctx->End(disjoint_.Get());
     ctx->Flush();
-    const auto frequency = WaitForQuery<rhi::QUERY_DATA_TIMESTAMP_DISJOINT>(ctx, disjoint_.Get());
-    const auto t0 = WaitForQuery<rhi::UINT64>(ctx, begin_.Get());
-    const auto t1 = WaitForQuery<rhi::UINT64>(ctx, end_.Get());
-    fragments_ = WaitForQuery<rhi::UINT64>(ctx, samples_.Get());
+    rhi::QUERY_DATA_TIMESTAMP_DISJOINT frequency{};
+    rhi::UINT64 t0 = 0, t1 = 0;
+    Check(rhi::WaitForData(ctx, disjoint_.Get(), &frequency), "GetData(TIMESTAMP_DISJOINT)");
+    Check(rhi::WaitForData(ctx, begin_.Get(), &t0), "GetData(TIMESTAMP)");
+    Check(rhi::WaitForData(ctx, end_.Get(), &t1), "GetData(TIMESTAMP)");
+    Check(rhi::WaitForData(ctx, samples_.Get(), &fragments_), "GetData(OCCLUSION)");
     if (frequency.Disjoint || frequency.Frequency == 0) return 0;
     return 1000.0 * static_cast<double>(t1 - t0) / static_cast<double>(frequency.Frequency);
   }

@@ -17,6 +17,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "renderer/particle_system.h"
+#include "rhi/query_wait.h"
 
 namespace {
 
@@ -91,12 +92,12 @@ Timing Measure(bool nativeDrawAuto, uint32_t particles, uint32_t frames) {
     context->End(t2.Get());
     context->End(disjoint.Get());
     QUERY_DATA_TIMESTAMP_DISJOINT clock{};
-    while (context->GetData(disjoint.Get(), &clock, sizeof clock, 0) == S_FALSE) {
-    }
     UINT64 a = 0, b = 0, c = 0;
-    context->GetData(t0.Get(), &a, sizeof a, 0);
-    context->GetData(t1.Get(), &b, sizeof b, 0);
-    context->GetData(t2.Get(), &c, sizeof c, 0);
+    if (FAILED(WaitForData(context.Get(), disjoint.Get(), &clock)) || FAILED(WaitForData(context.Get(), t0.Get(), &a)) ||
+        FAILED(WaitForData(context.Get(), t1.Get(), &b)) || FAILED(WaitForData(context.Get(), t2.Get(), &c))) {
+      std::fprintf(stderr, "particles_bench: GetData failed\n");
+      std::exit(1);
+    }
     updates.push_back(1e3 * double(b - a) / double(clock.Frequency));
     draws.push_back(1e3 * double(c - b) / double(clock.Frequency));
   }

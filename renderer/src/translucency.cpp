@@ -12,6 +12,7 @@
 
 #include "fx/effect.h"
 #include "rhi/capture.h"
+#include "rhi/query_wait.h"
 
 namespace renderer {
 
@@ -646,9 +647,7 @@ void Translucency::ParticleUpdatePass() {
   if (count) {
     ctx->End(m.soStats.Get());
     QUERY_DATA_SO_STATISTICS data{};
-    while (ctx->GetData(m.soStats.Get(), &data, sizeof data, 0) == S_FALSE) {
-    }
-    particleCount_ = data.NumPrimitivesWritten;
+    if (SUCCEEDED(WaitForData(ctx, m.soStats.Get(), &data))) particleCount_ = data.NumPrimitivesWritten;
   }
 }
 
@@ -788,16 +787,12 @@ PassTimes Translucency::LastTimes() {
   if (!m.timesPending) return t;
   m.timesPending = false;
   QUERY_DATA_TIMESTAMP_DISJOINT disjoint{};
-  while (m.context->GetData(m.disjoint.Get(), &disjoint, sizeof disjoint, 0) == S_FALSE) {
-  }
   UINT64 stamps[5] = {};
-  for (int i = 0; i < 5; ++i)
-    while (m.context->GetData(m.stamps[i].Get(), &stamps[i], sizeof stamps[i], 0) == S_FALSE) {
-    }
   QUERY_DATA_PIPELINE_STATISTICS statistics{};
-  while (m.context->GetData(m.transparencyStatistics.Get(), &statistics, sizeof statistics, 0) == S_FALSE) {
-  }
-  if (disjoint.Disjoint || disjoint.Frequency == 0) return t;
+  bool ready = SUCCEEDED(WaitForData(m.context, m.disjoint.Get(), &disjoint));
+  for (int i = 0; i < 5; ++i) ready = SUCCEEDED(WaitForData(m.context, m.stamps[i].Get(), &stamps[i])) && ready;
+  ready = SUCCEEDED(WaitForData(m.context, m.transparencyStatistics.Get(), &statistics)) && ready;
+  if (!ready || disjoint.Disjoint || disjoint.Frequency == 0) return t;
   auto ms = [&](int a, int b) { return double(stamps[b] - stamps[a]) * 1000.0 / double(disjoint.Frequency); };
   t.valid = true;
   t.opaqueMs = ms(0, 1);

@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "rhi/query_wait.h"
 #include "rhi/rhi.h"
 
 namespace rhi_test {
@@ -67,12 +68,11 @@ class GpuTest : public ::testing::Test {
   // One RGBA8 pixel of ReadTexture's result.
   static uint32_t Pixel(const std::vector<uint8_t>& rgba8, UINT width, UINT x, UINT y);
 
-  // Polls a query until its data is ready.
+  // Polls a query until its data is ready; a failed GetData fails the test.
   template <class T>
   T WaitForData(rhi::Query* query) {
     T data{};
-    while (context->GetData(query, &data, sizeof data, 0) == rhi::S_FALSE) {
-    }
+    EXPECT_EQ(rhi::WaitForData(context.Get(), query, &data), rhi::S_OK);
     return data;
   }
 

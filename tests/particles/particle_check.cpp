@@ -1,5 +1,7 @@
 #include "particle_check.h"
 
+#include "rhi/query_wait.h"
+
 namespace particles_check {
 
 using namespace rhi;
@@ -22,8 +24,7 @@ CheckResult RunParticleCheck(Device* device, DeviceContext* context, const rende
     if (!check) continue;
     context->End(stats.Get());
     QUERY_DATA_SO_STATISTICS data{};
-    while (context->GetData(stats.Get(), &data, sizeof data, 0) == S_FALSE) {
-    }
+    if (FAILED(WaitForData(context, stats.Get(), &data))) return {false, update, 0, "GetData(SO_STATISTICS) failed"};
     result.updates = update;
     result.lastCount = data.NumPrimitivesWritten;
     if (data.NumPrimitivesWritten != expected || data.PrimitivesStorageNeeded != expected) {

@@ -231,6 +231,12 @@ RawVulkan& Raw() {
 struct Timed {
   double cpuSeconds = 0;
   double wallSeconds = 0;
+
+  Timed& operator+=(const Timed& other) {
+    cpuSeconds += other.cpuSeconds;
+    wallSeconds += other.wallSeconds;
+    return *this;
+  }
 };
 template <class Record>
 Timed TimeRecording(Record&& record) {
@@ -259,10 +265,8 @@ void BM_RhiVsRaw(benchmark::State& state) {
     const Timed rawBatch = TimeRecording([&] { raw.RecordBatch(kDrawsPerBatch, false); });
     raw.SubmitAndWait();
     state.SetIterationTime(rhiBatch.cpuSeconds);
-    rhiTotal.cpuSeconds += rhiBatch.cpuSeconds;
-    rhiTotal.wallSeconds += rhiBatch.wallSeconds;
-    rawTotal.cpuSeconds += rawBatch.cpuSeconds;
-    rawTotal.wallSeconds += rawBatch.wallSeconds;
+    rhiTotal += rhiBatch;
+    rawTotal += rawBatch;
     draws += kDrawsPerBatch;
   }
   state.SetItemsProcessed(draws);

@@ -12,7 +12,7 @@
 // set), the fragment count from an OCCLUSION query.
 //
 //   blend_fill_bench [--size WxH] [--draws N] [--repeats R] [--overlap L]
-//                    [--jitter] [--gs] [--large] [--varying] [--depth] [--sampled]
+//                    [--jitter] [--gs] [--large] [--attributes] [--varying] [--depth] [--sampled]
 //
 // The options move the probe towards the smoke pass one property at a time
 // (see Options). The device is picked as everywhere else (RHI_DEVICE, else lavapipe).
@@ -54,9 +54,40 @@ float4 TileCorner(uint quad, float2 corner) {
   return float4(p * float2(2, -2) + float2(-1, 1), 0, 1);
 }
 
-float4 VSTiles(uint id : SV_VertexID) : SV_Position {
+// ATTRIBUTES (--attributes): 12 more interpolated floats reach the pixel
+// shader, as the billboard's uv, age and basis do; otherwise only the position.
+struct QuadVertex {
+  float4 position : SV_Position;
+#ifdef ATTRIBUTES
+  float4 extra0 : EXTRA0;
+  float4 extra1 : EXTRA1;
+  float4 extra2 : EXTRA2;
+#endif
+};
+
+QuadVertex MakeQuadVertex(uint quad, float2 corner) {
+  QuadVertex v;
+  v.position = TileCorner(quad, corner);
+#ifdef ATTRIBUTES
+  v.extra0 = float4(corner, quad, 1);
+  v.extra1 = v.position.yxzw;
+  v.extra2 = float4(corner.yx, 0.5, quad * 0.25);
+#endif
+  return v;
+}
+
+// The pixel shader's use of the attributes: a negligible term it cannot drop.
+float4 Extra(QuadVertex v) {
+#ifdef ATTRIBUTES
+  return (v.extra0 + v.extra1 + v.extra2) * 1e-12;
+#else
+  return 0;
+#endif
+}
+
+QuadVertex VSTiles(uint id : SV_VertexID) {
   const float2 corners[6] = {float2(0, 0), float2(1, 0), float2(0, 1), float2(0, 1), float2(1, 0), float2(1, 1)};
-  return TileCorner(id / 6, corners[id % 6]);
+  return MakeQuadVertex(id / 6, corners[id % 6]);
 }
 
 // --gs: the tiles travel as points and a geometry shader expands each into a
@@ -71,17 +102,11 @@ TilePoint VSTilePoints(uint id : SV_VertexID) {
   return p;
 }
 
-struct QuadVertex {
-  float4 position : SV_Position;
-};
-
 [maxvertexcount(4)]
 void GSTileQuad(point TilePoint input[1], inout TriangleStream<QuadVertex> stream) {
   const float2 corners[4] = {float2(0, 0), float2(1, 0), float2(0, 1), float2(1, 1)};
   for (uint i = 0; i < 4; ++i) {
-    QuadVertex v;
-    v.position = TileCorner(input[0].quad, corners[i]);
-    stream.Append(v);
+    stream.Append(MakeQuadVertex(input[0].quad, corners[i]));
   }
 }
 
@@ -91,16 +116,18 @@ void GSTileQuad(point TilePoint input[1], inout TriangleStream<QuadVertex> strea
 // keep values in [0, 1], as revealage's alpha does.
 float4 Value(float4 pos) { return (float4(1, 2, 3, 4) + Varying * frac(pos.xyxy * 0.37)) / 4096.0; }
 
-float4 PSOneTarget(float4 pos : SV_Position) : SV_Target0 { return Scale * Value(pos); }
+float4 PSOneTarget(QuadVertex v) : SV_Target0 { return Scale * Value(v.position) + Extra(v); }
 
 struct TwoTargets { float4 a : SV_Target0; float4 b : SV_Target1; };
-TwoTargets PSTwoTargets(float4 pos : SV_Position) {
-  TwoTargets o; o.a = Scale * Value(pos); o.b = Value(pos.yxzw); return o;
+TwoTargets PSTwoTargets(QuadVertex v) {
+  TwoTargets o; o.a = Scale * Value(v.position) + Extra(v); o.b = Value(v.position.yxzw); return o;
 }
 
 struct ThreeTargets { float4 a : SV_Target0; float4 b : SV_Target1; float4 c : SV_Target2; };
-ThreeTargets PSThreeTargets(float4 pos : SV_Position) {
-  ThreeTargets o; o.a = Scale * Value(pos); o.b = Value(pos.yxzw); o.c = Value(pos.xxyy); return o;
+ThreeTargets PSThreeTargets(QuadVertex v) {
+  ThreeTargets o;
+  o.a = Scale * Value(v.position) + Extra(v); o.b = Value(v.position.yxzw); o.c = Value(v.position.xxyy);
+  return o;
 }
 )hlsl";
 
@@ -149,9 +176,10 @@ void Check(rhi::HRESULT hr, const char* what) {
   if (hr != rhi::S_OK) Fail(std::string(what) + " failed");
 }
 
-std::vector<uint32_t> Compile(const char* entry, const char* profile) {
+std::vector<uint32_t> Compile(const char* entry, const char* profile, bool attributes) {
   hlsl::CompileRequest request;
   request.source = kHlsl;
+  if (attributes) request.defines.push_back({"ATTRIBUTES", "1"});
   request.fileName = "blend_fill_bench.hlsl";
   request.entryPoint = entry;
   request.profile = profile;
@@ -171,6 +199,7 @@ struct Options {
   bool geometryShader = false;  // tiles as points expanded by a GS
   bool jitter = false;          // quads offset at random by up to half a tile
   bool large = false;           // SV_Target0 gets ~1000 (WBOIT-like accum values)
+  bool attributes = false;      // 12 more interpolated floats into the pixel shader
 };
 
 Options ParseOptions(int argc, char** argv) {
@@ -199,9 +228,11 @@ Options ParseOptions(int argc, char** argv) {
       options.jitter = true;
     } else if (arg == "--large") {
       options.large = true;
+    } else if (arg == "--attributes") {
+      options.attributes = true;
     } else {
       Fail("usage: blend_fill_bench [--size WxH] [--draws N>0] [--repeats R>0] [--varying] [--depth] "
-           "[--overlap L dividing N] [--sampled] [--gs] [--jitter] [--large] (bad argument '" +
+           "[--overlap L dividing N] [--sampled] [--gs] [--jitter] [--large] [--attributes] (bad argument '" +
            arg + "')");
     }
   }
@@ -217,16 +248,17 @@ class Probe {
       if (severity <= rhi::MESSAGE_SEVERITY_WARNING) Fail(text);
     };
     Check(rhi::CreateDevice(&deviceOptions, device_.GetAddressOf(), context_.GetAddressOf()), "CreateDevice");
-    const std::vector<uint32_t> vs = Compile(options.geometryShader ? "VSTilePoints" : "VSTiles", "vs_5_0");
+    const std::vector<uint32_t> vs =
+        Compile(options.geometryShader ? "VSTilePoints" : "VSTiles", "vs_5_0", options.attributes);
     Check(device_->CreateVertexShader(vs.data(), vs.size() * 4, nullptr, vs_.GetAddressOf()), "CreateVertexShader");
     if (options.geometryShader) {
-      const std::vector<uint32_t> gs = Compile("GSTileQuad", "gs_5_0");
+      const std::vector<uint32_t> gs = Compile("GSTileQuad", "gs_5_0", options.attributes);
       Check(device_->CreateGeometryShader(gs.data(), gs.size() * 4, nullptr, gs_.GetAddressOf()),
             "CreateGeometryShader");
     }
     const char* pixelShaders[3] = {"PSOneTarget", "PSTwoTargets", "PSThreeTargets"};
     for (int i = 0; i < 3; ++i) {
-      const std::vector<uint32_t> ps = Compile(pixelShaders[i], "ps_5_0");
+      const std::vector<uint32_t> ps = Compile(pixelShaders[i], "ps_5_0", options.attributes);
       Check(device_->CreatePixelShader(ps.data(), ps.size() * 4, nullptr, ps_[i].GetAddressOf()), "CreatePixelShader");
     }
     struct {
@@ -401,11 +433,13 @@ int main(int argc, char** argv) {
   Probe probe(options);
   std::printf("device: %s; %d layers of 16x9 tiles covering %ux%u, median of %d; ", probe.AdapterName().c_str(),
               options.draws, options.width, options.height, options.repeats);
-  std::printf("outputs %s%s, depth test %s, each tile drawn %d time(s) in a row%s, targets %s, tiles %s\n\n",
-              options.varying ? "varying per pixel" : "uniform", options.large ? " (SV_Target0 ~1000, the others ~1/1000)" : " (~1/1000)",
+  std::printf("outputs %s (%s), depth test %s, each tile drawn %d time(s) in a row%s, targets %s, tiles %s, %s\n\n",
+              options.varying ? "varying per pixel" : "uniform",
+              options.large ? "SV_Target0 ~1000, the others ~1/1000" : "~1/1000",
               options.depth ? "LESS against 1.0, no write" : "off", options.overlap,
               options.jitter ? " at random offsets" : "", options.sampled ? "also shader resources" : "render targets only",
-              options.geometryShader ? "points expanded by a GS" : "triangles");
+              options.geometryShader ? "points expanded by a GS" : "triangles",
+              options.attributes ? "12 interpolated floats besides the position" : "the position alone interpolated");
   std::printf("| render targets (ONE/ONE unless named) | GPU ms | M fragments | G fragments/s | time / one RGBA8 |\n");
   std::printf("|---|---:|---:|---:|---:|\n");
   double reference = 0;

@@ -242,50 +242,17 @@ Options ParseOptions(int argc, char** argv) {
 
 class Probe {
  public:
-  Probe(const Options& options) : options_(options) {
+  explicit Probe(const Options& options) : options_(options) {
     rhi::DEVICE_OPTIONS deviceOptions;
     deviceOptions.OnMessage = [](rhi::MESSAGE_CATEGORY, rhi::MESSAGE_SEVERITY severity, const char* text) {
       if (severity <= rhi::MESSAGE_SEVERITY_WARNING) Fail(text);
     };
     Check(rhi::CreateDevice(&deviceOptions, device_.GetAddressOf(), context_.GetAddressOf()), "CreateDevice");
-    const std::vector<uint32_t> vs =
-        Compile(options.geometryShader ? "VSTilePoints" : "VSTiles", "vs_5_0", options.attributes);
-    Check(device_->CreateVertexShader(vs.data(), vs.size() * 4, nullptr, vs_.GetAddressOf()), "CreateVertexShader");
-    if (options.geometryShader) {
-      const std::vector<uint32_t> gs = Compile("GSTileQuad", "gs_5_0", options.attributes);
-      Check(device_->CreateGeometryShader(gs.data(), gs.size() * 4, nullptr, gs_.GetAddressOf()),
-            "CreateGeometryShader");
-    }
-    const char* pixelShaders[3] = {"PSOneTarget", "PSTwoTargets", "PSThreeTargets"};
-    for (int i = 0; i < 3; ++i) {
-      const std::vector<uint32_t> ps = Compile(pixelShaders[i], "ps_5_0", options.attributes);
-      Check(device_->CreatePixelShader(ps.data(), ps.size() * 4, nullptr, ps_[i].GetAddressOf()), "CreatePixelShader");
-    }
-    struct {
-      float varying;
-      uint32_t layers;
-      float jitter;
-      float scale;
-    } probeConstants{options.varying ? 1.0f : 0.0f, static_cast<uint32_t>(options.overlap),
-                     options.jitter ? 1.0f : 0.0f, options.large ? 4096.0f * 256.0f : 1.0f};
-    rhi::BUFFER_DESC cbDesc{sizeof probeConstants, rhi::USAGE_IMMUTABLE, rhi::BIND_CONSTANT_BUFFER, 0, 0, 0};
-    rhi::SUBRESOURCE_DATA cbData{&probeConstants, 0, 0};
-    Check(device_->CreateBuffer(&cbDesc, &cbData, constants_.GetAddressOf()), "CreateBuffer");
+    CreateShaders();
+    CreateConstants();
+    CreateStates();
+    CreateQueries();
     if (options.depth) CreateDepthBuffer();
-    rhi::RASTERIZER_DESC noCull{};
-    noCull.CullMode = rhi::CULL_NONE;
-    Check(device_->CreateRasterizerState(&noCull, rasterizer_.GetAddressOf()), "CreateRasterizerState");
-    rhi::DEPTH_STENCIL_DESC depthState{};
-    depthState.DepthEnable = options.depth ? rhi::TRUE : rhi::FALSE;
-    depthState.DepthWriteMask = rhi::DEPTH_WRITE_MASK_ZERO;
-    depthState.DepthFunc = rhi::COMPARISON_LESS;
-    Check(device_->CreateDepthStencilState(&depthState, depth_.GetAddressOf()), "CreateDepthStencilState");
-    rhi::QUERY_DESC disjointDesc{rhi::QUERY_TIMESTAMP_DISJOINT, 0}, stampDesc{rhi::QUERY_TIMESTAMP, 0};
-    Check(device_->CreateQuery(&disjointDesc, disjoint_.GetAddressOf()), "CreateQuery(TIMESTAMP_DISJOINT)");
-    Check(device_->CreateQuery(&stampDesc, begin_.GetAddressOf()), "CreateQuery(TIMESTAMP)");
-    Check(device_->CreateQuery(&stampDesc, end_.GetAddressOf()), "CreateQuery(TIMESTAMP)");
-    rhi::QUERY_DESC occlusionDesc{rhi::QUERY_OCCLUSION, 0};
-    Check(device_->CreateQuery(&occlusionDesc, samples_.GetAddressOf()), "CreateQuery(OCCLUSION)");
   }
 
   std::string AdapterName() { return device_->GetAdapterName(); }
@@ -293,7 +260,7 @@ class Probe {
   double Fragments() const { return static_cast<double>(fragments_); }
 
   // The median GPU milliseconds of `repeats` measurements of `draws` screen-covering
-  // triangles into the set (one untimed measurement first builds the pipeline).
+  // layers into the set (one untimed measurement first builds the pipeline).
   double MedianMilliseconds(const TargetSet& set) {
     std::vector<ComPtr<rhi::Texture2D>> textures;
     std::vector<ComPtr<rhi::RenderTargetView>> views;
@@ -330,6 +297,57 @@ class Probe {
   }
 
  private:
+  void CreateShaders() {
+    const bool attributes = options_.attributes;
+    const std::vector<uint32_t> vs =
+        Compile(options_.geometryShader ? "VSTilePoints" : "VSTiles", "vs_5_0", attributes);
+    Check(device_->CreateVertexShader(vs.data(), vs.size() * 4, nullptr, vs_.GetAddressOf()), "CreateVertexShader");
+    if (options_.geometryShader) {
+      const std::vector<uint32_t> gs = Compile("GSTileQuad", "gs_5_0", attributes);
+      Check(device_->CreateGeometryShader(gs.data(), gs.size() * 4, nullptr, gs_.GetAddressOf()),
+            "CreateGeometryShader");
+    }
+    const char* pixelShaders[3] = {"PSOneTarget", "PSTwoTargets", "PSThreeTargets"};
+    for (int i = 0; i < 3; ++i) {
+      const std::vector<uint32_t> ps = Compile(pixelShaders[i], "ps_5_0", attributes);
+      Check(device_->CreatePixelShader(ps.data(), ps.size() * 4, nullptr, ps_[i].GetAddressOf()), "CreatePixelShader");
+    }
+  }
+
+  // cbuffer Probe of the HLSL above.
+  void CreateConstants() {
+    struct {
+      float varying;
+      uint32_t layers;
+      float jitter;
+      float scale;
+    } probeConstants{options_.varying ? 1.0f : 0.0f, static_cast<uint32_t>(options_.overlap),
+                     options_.jitter ? 1.0f : 0.0f, options_.large ? 4096.0f * 256.0f : 1.0f};
+    rhi::BUFFER_DESC desc{sizeof probeConstants, rhi::USAGE_IMMUTABLE, rhi::BIND_CONSTANT_BUFFER, 0, 0, 0};
+    rhi::SUBRESOURCE_DATA data{&probeConstants, 0, 0};
+    Check(device_->CreateBuffer(&desc, &data, constants_.GetAddressOf()), "CreateBuffer");
+  }
+
+  void CreateStates() {
+    rhi::RASTERIZER_DESC noCull{};
+    noCull.CullMode = rhi::CULL_NONE;
+    Check(device_->CreateRasterizerState(&noCull, rasterizer_.GetAddressOf()), "CreateRasterizerState");
+    rhi::DEPTH_STENCIL_DESC depthState{};
+    depthState.DepthEnable = options_.depth ? rhi::TRUE : rhi::FALSE;
+    depthState.DepthWriteMask = rhi::DEPTH_WRITE_MASK_ZERO;
+    depthState.DepthFunc = rhi::COMPARISON_LESS;
+    Check(device_->CreateDepthStencilState(&depthState, depth_.GetAddressOf()), "CreateDepthStencilState");
+  }
+
+  void CreateQueries() {
+    rhi::QUERY_DESC disjointDesc{rhi::QUERY_TIMESTAMP_DISJOINT, 0}, stampDesc{rhi::QUERY_TIMESTAMP, 0},
+        occlusionDesc{rhi::QUERY_OCCLUSION, 0};
+    Check(device_->CreateQuery(&disjointDesc, disjoint_.GetAddressOf()), "CreateQuery(TIMESTAMP_DISJOINT)");
+    Check(device_->CreateQuery(&stampDesc, begin_.GetAddressOf()), "CreateQuery(TIMESTAMP)");
+    Check(device_->CreateQuery(&stampDesc, end_.GetAddressOf()), "CreateQuery(TIMESTAMP)");
+    Check(device_->CreateQuery(&occlusionDesc, samples_.GetAddressOf()), "CreateQuery(OCCLUSION)");
+  }
+
   // D3D11 forbids colour factors for alpha: each colour factor's alpha twin.
   static rhi::BLEND AlphaFactor(rhi::BLEND colorFactor) {
     switch (colorFactor) {

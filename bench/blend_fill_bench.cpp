@@ -266,16 +266,8 @@ class Probe {
     std::vector<ComPtr<rhi::RenderTargetView>> views;
     std::vector<rhi::RenderTargetView*> bound;
     for (const Target& target : set.targets) {
-      rhi::TEXTURE2D_DESC desc{};
-      desc.Width = options_.width;
-      desc.Height = options_.height;
-      desc.MipLevels = desc.ArraySize = 1;
-      desc.Format = target.format;
-      desc.SampleDesc.Count = 1;
-      desc.Usage = rhi::USAGE_DEFAULT;
-      desc.BindFlags = rhi::BIND_RENDER_TARGET | (options_.sampled ? rhi::BIND_SHADER_RESOURCE : 0u);
-      textures.emplace_back();
-      Check(device_->CreateTexture2D(&desc, nullptr, textures.back().GetAddressOf()), "CreateTexture2D");
+      const rhi::UINT bind = rhi::BIND_RENDER_TARGET | (options_.sampled ? rhi::BIND_SHADER_RESOURCE : 0u);
+      textures.push_back(CreateScreenTexture(target.format, bind));
       views.emplace_back();
       Check(device_->CreateRenderTargetView(textures.back().Get(), nullptr, views.back().GetAddressOf()),
             "CreateRenderTargetView");
@@ -373,16 +365,17 @@ class Probe {
     return desc;
   }
 
+  // A single-sample texture of the measured size.
+  ComPtr<rhi::Texture2D> CreateScreenTexture(rhi::DXGI_FORMAT format, rhi::UINT bindFlags) {
+    const rhi::TEXTURE2D_DESC desc{options_.width, options_.height, 1, 1, format, {1, 0}, rhi::USAGE_DEFAULT,
+                                   bindFlags, 0, 0};
+    ComPtr<rhi::Texture2D> texture;
+    Check(device_->CreateTexture2D(&desc, nullptr, texture.GetAddressOf()), "CreateTexture2D");
+    return texture;
+  }
+
   void CreateDepthBuffer() {
-    rhi::TEXTURE2D_DESC desc{};
-    desc.Width = options_.width;
-    desc.Height = options_.height;
-    desc.MipLevels = desc.ArraySize = 1;
-    desc.Format = rhi::DXGI_FORMAT_D32_FLOAT;
-    desc.SampleDesc.Count = 1;
-    desc.Usage = rhi::USAGE_DEFAULT;
-    desc.BindFlags = rhi::BIND_DEPTH_STENCIL;
-    Check(device_->CreateTexture2D(&desc, nullptr, depthTexture_.GetAddressOf()), "CreateTexture2D (depth)");
+    depthTexture_ = CreateScreenTexture(rhi::DXGI_FORMAT_D32_FLOAT, rhi::BIND_DEPTH_STENCIL);
     Check(device_->CreateDepthStencilView(depthTexture_.Get(), nullptr, depthView_.GetAddressOf()),
           "CreateDepthStencilView");
   }

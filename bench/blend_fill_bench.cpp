@@ -448,7 +448,8 @@ int main(int argc, char** argv) {
               options.varying ? "varying per pixel" : "uniform",
               options.large ? "SV_Target0 ~1000, the others ~1/1000" : "~1/1000",
               options.depth ? "LESS against 1.0, no write" : "off", options.overlap,
-              options.jitter ? " at random offsets" : "", options.sampled ? "also shader resources" : "render targets only",
+              options.jitter ? " at random offsets" : "",
+              options.sampled ? "also shader resources" : "render targets only",
               options.geometryShader ? "points expanded by a GS" : "triangles",
               options.attributes ? "12 interpolated floats besides the position" : "the position alone interpolated");
   std::printf("| render targets (ONE/ONE unless named) | GPU ms | M fragments | G fragments/s | time / one RGBA8 |\n");

@@ -12,10 +12,14 @@
 // set), the fragment count from an OCCLUSION query.
 //
 //   blend_fill_bench [--size WxH] [--draws N] [--repeats R] [--overlap L]
-//                    [--jitter] [--gs] [--large] [--attributes] [--varying] [--depth] [--sampled]
+//                    [--jitter] [--gs] [--large] [--opacity] [--attributes] [--varying] [--depth]
+//                    [--sampled]
 //
 // The options move the probe towards the smoke pass one property at a time
-// (see Options). The device is picked as everywhere else (RHI_DEVICE, else lavapipe).
+// (see Options). Use --opacity for figures that stand for real blending: without
+// it, UNORM8 targets round the small values away and the blends leave them
+// unchanged, which an NVIDIA H100 does several times faster (docs/PERF.md).
+// The device is picked as everywhere else (RHI_DEVICE, else lavapipe).
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -38,11 +42,13 @@ constexpr const char* kHlsl = R"hlsl(
 // each quad moves by up to half a tile, so quads overlap at random offsets as
 // billboards do. Scale (--large): SV_Target0's output is about 1000 instead of
 // 1/1000, as WBOIT's weighted accum colours are (an RGBA16F sum then reaches infinity).
+// Opacity = 1 (--opacity): every target gets alpha-like values, as the smoke's are.
 cbuffer Probe : register(b0) {
   float Varying;
   uint Layers;
   float Jitter;
   float Scale;
+  float Opacity;
 };
 
 // Clip-space corner of quad `quad` (tile quad / Layers), corner in [0, 1]^2.
@@ -116,17 +122,28 @@ void GSTileQuad(point TilePoint input[1], inout TriangleStream<QuadVertex> strea
 // keep values in [0, 1], as revealage's alpha does.
 float4 Value(float4 pos) { return (float4(1, 2, 3, 4) + Varying * frac(pos.xyxy * 0.37)) / 4096.0; }
 
-float4 PSOneTarget(QuadVertex v) : SV_Target0 { return Scale * Value(v.position) + Extra(v); }
+// --opacity: alphas in [0.05, 0.8] that vary from pixel to pixel, as the
+// smoke's do. Without it the outputs are ~1/4096, which UNORM8 targets round
+// away: blending then leaves them at their clear values.
+float4 AlphaLike(float4 pos) { return 0.05 + 0.75 * frac(pos.yxxy * float4(0.173, 0.311, 0.057, 0.29)); }
+
+float4 First(QuadVertex v) {
+  return (Opacity > 0 ? AlphaLike(v.position) / 1024.0 : Value(v.position)) * Scale + Extra(v);
+}
+
+float4 Other(float4 pos) { return Opacity > 0 ? AlphaLike(pos) : Value(pos.yxzw); }
+
+float4 PSOneTarget(QuadVertex v) : SV_Target0 { return First(v); }
 
 struct TwoTargets { float4 a : SV_Target0; float4 b : SV_Target1; };
 TwoTargets PSTwoTargets(QuadVertex v) {
-  TwoTargets o; o.a = Scale * Value(v.position) + Extra(v); o.b = Value(v.position.yxzw); return o;
+  TwoTargets o; o.a = First(v); o.b = Other(v.position); return o;
 }
 
 struct ThreeTargets { float4 a : SV_Target0; float4 b : SV_Target1; float4 c : SV_Target2; };
 ThreeTargets PSThreeTargets(QuadVertex v) {
   ThreeTargets o;
-  o.a = Scale * Value(v.position) + Extra(v); o.b = Value(v.position.yxzw); o.c = Value(v.position.xxyy);
+  o.a = First(v); o.b = Other(v.position); o.c = Other(v.position.yxwz);
   return o;
 }
 )hlsl";
@@ -160,6 +177,11 @@ const std::vector<TargetSet>& TargetSets() {
       {"RGBA8 + RGBA8", {rgba8, rgba8}},
       {"RGBA8 + R8", {rgba8, r8}},
       {"RGBA8 + R8 ZERO/INV_SRC_COLOR", {rgba8, revealage}},
+      {"R8 + R8", {r8, r8}},
+      {"RGBA16F + RGBA16F", {rgba16f, rgba16f}},
+      {"RGBA16F + RGBA8", {rgba16f, rgba8}},
+      {"RGBA16F + R16F", {rgba16f, {DXGI_FORMAT_R16_FLOAT, true}}},
+      {"RGBA16F + RG16F", {rgba16f, {DXGI_FORMAT_R16G16_FLOAT, true}}},
       {"RGBA16F + R8", {rgba16f, r8}},
       {"Table 1: RGBA16F + R8 ZERO/INV_SRC_COLOR", {rgba16f, revealage}},
       {"Table 3: Table 1 + RGBA8 ZERO/INV_SRC_COLOR", {rgba16f, revealage, frame}},
@@ -199,6 +221,7 @@ struct Options {
   bool geometryShader = false;  // tiles as points expanded by a GS
   bool jitter = false;          // quads offset at random by up to half a tile
   bool large = false;           // SV_Target0 gets ~1000 (WBOIT-like accum values)
+  bool opacity = false;         // every target gets alpha-like values, as the smoke's are
   bool attributes = false;      // 12 more interpolated floats into the pixel shader
 };
 
@@ -228,11 +251,14 @@ Options ParseOptions(int argc, char** argv) {
       options.jitter = true;
     } else if (arg == "--large") {
       options.large = true;
+    } else if (arg == "--opacity") {
+      options.opacity = true;
     } else if (arg == "--attributes") {
       options.attributes = true;
     } else {
       Fail("usage: blend_fill_bench [--size WxH] [--draws N>0] [--repeats R>0] [--varying] [--depth] "
-           "[--overlap L dividing N] [--sampled] [--gs] [--jitter] [--large] [--attributes] (bad argument '" +
+           "[--overlap L dividing N] [--sampled] [--gs] [--jitter] [--large] [--opacity] [--attributes] "
+           "(bad argument '" +
            arg + "')");
     }
   }
@@ -306,6 +332,13 @@ class Probe {
     }
   }
 
+  // Probe.Scale: SV_Target0's ~1/4096 (or, with --opacity, alpha/1024) made ~1000
+  // with --large, else ~1/4096 (or the alpha itself).
+  float Scale() const {
+    if (options_.opacity) return options_.large ? 1024.0f * 1000.0f : 1024.0f;
+    return options_.large ? 4096.0f * 256.0f : 1.0f;
+  }
+
   // cbuffer Probe of the HLSL above.
   void CreateConstants() {
     struct {
@@ -313,8 +346,11 @@ class Probe {
       uint32_t layers;
       float jitter;
       float scale;
-    } probeConstants{options_.varying ? 1.0f : 0.0f, static_cast<uint32_t>(options_.overlap),
-                     options_.jitter ? 1.0f : 0.0f, options_.large ? 4096.0f * 256.0f : 1.0f};
+      float opacity;
+      float padding[3];  // a cbuffer's size is a multiple of 16 bytes
+    } probeConstants{options_.varying ? 1.0f : 0.0f,           static_cast<uint32_t>(options_.overlap),
+                     options_.jitter ? 1.0f : 0.0f,            Scale(),
+                     options_.opacity ? 1.0f : 0.0f,           {}};
     rhi::BUFFER_DESC desc{sizeof probeConstants, rhi::USAGE_IMMUTABLE, rhi::BIND_CONSTANT_BUFFER, 0, 0, 0};
     rhi::SUBRESOURCE_DATA data{&probeConstants, 0, 0};
     Check(device_->CreateBuffer(&desc, &data, constants_.GetAddressOf()), "CreateBuffer");
@@ -439,14 +475,19 @@ class Probe {
 
 }  // namespace
 
+const char* ValuesDescription(const Options& options) {
+  if (options.opacity) return options.large ? "alphas 0.05-0.8, SV_Target0's times 1000" : "alphas 0.05-0.8";
+  return options.large ? "SV_Target0 ~1000, the others ~1/1000" : "~1/1000";
+}
+
 int main(int argc, char** argv) {
   const Options options = ParseOptions(argc, argv);
   Probe probe(options);
   std::printf("device: %s; %d layers of 16x9 tiles covering %ux%u, median of %d; ", probe.AdapterName().c_str(),
               options.draws, options.width, options.height, options.repeats);
   std::printf("outputs %s (%s), depth test %s, each tile drawn %d time(s) in a row%s, targets %s, tiles %s, %s\n\n",
-              options.varying ? "varying per pixel" : "uniform",
-              options.large ? "SV_Target0 ~1000, the others ~1/1000" : "~1/1000",
+              options.varying || options.opacity ? "varying per pixel" : "uniform",
+              ValuesDescription(options),
               options.depth ? "LESS against 1.0, no write" : "off", options.overlap,
               options.jitter ? " at random offsets" : "",
               options.sampled ? "also shader resources" : "render targets only",

@@ -58,9 +58,9 @@ struct Billboard {
   float4 position : SV_Position;
   float2 uv : TEXCOORD0;
   float age : AGE;
-  float3 bx : BASISX;
-  float3 by : BASISY;
-  float3 bz : BASISZ;
+  // LightDir in the billboard's basis (x, y, z): the PS lights the normal map in
+  // that basis, which passes 3 values to every fragment where the basis is 9.
+  nointerpolation float3 light : LIGHT;
 };
 
 Center VSSmoke(Particle p) {
@@ -79,6 +79,8 @@ void GSBillboard(point Center input[1], inout TriangleStream<Billboard> stream) 
   float3 x = normalize(cross(float3(0, 1, 0), z));
   float3 y = cross(z, x);
   float size = Size * (0.5 + input[0].age);
+  float3 l = normalize(LightDir);
+  float3 light = float3(dot(x, l), dot(y, l), dot(z, l));
   float2 corners[4] = {float2(-1, -1), float2(-1, 1), float2(1, -1), float2(1, 1)};
   for (uint i = 0; i < 4; ++i) {
     Billboard b;
@@ -86,9 +88,7 @@ void GSBillboard(point Center input[1], inout TriangleStream<Billboard> stream) 
     b.position = mul(ViewProj, float4(world, 1));
     b.uv = float2(corners[i].x, -corners[i].y) * 0.5 + 0.5;
     b.age = input[0].age;
-    b.bx = x;
-    b.by = y;
-    b.bz = z;
+    b.light = light;
     stream.Append(b);
   }
 }
@@ -99,8 +99,8 @@ void GSBillboard(point Center input[1], inout TriangleStream<Billboard> stream) 
 void Shade(Billboard b, out float3 c, out float a, out float3 t) {
   float4 puff = Puff.Sample(Linear, b.uv);
   float3 n = puff.rgb * 2.0 - 1.0;
-  float3 nw = normalize(b.bx * n.x + b.by * n.y + b.bz * n.z);
-  float light = saturate(dot(nw, normalize(LightDir))) * 0.75 + 0.3;
+  // The basis is orthonormal, so dot(normalize(basis * n), l) = dot(normalize(n), basis^T l).
+  float light = saturate(dot(normalize(n), b.light)) * 0.75 + 0.3;
   if (Flame > 0.5) {
     float3 core = float3(1.0, 0.9, 0.55);
     float3 mid = float3(1.0, 0.45, 0.08);

@@ -183,59 +183,74 @@ std::vector<BenchCase> BenchCases(const Options& o) {
   return cases;
 }
 
+// The timed samples of one method (medians are taken at the end).
+struct MethodSamples {
+  std::vector<double> wall, cpu, opaque, update, pass3d, compose, gpu, fragments;
+};
+
+// Renders and times one frame of `t`; the GPU times only when its timestamps came back.
+void TimeFrame(renderer::Translucency& t, TranslucencyMethod method, MethodSamples& samples) {
+  auto start = std::chrono::steady_clock::now();
+  t.RenderFrame(method);
+  auto recorded = std::chrono::steady_clock::now();
+  renderer::PassTimes times = t.LastTimes();  // waits for the GPU
+  auto done = std::chrono::steady_clock::now();
+  samples.cpu.push_back(std::chrono::duration<double, std::milli>(recorded - start).count());
+  samples.wall.push_back(std::chrono::duration<double, std::milli>(done - start).count());
+  if (!times.valid) return;
+  samples.opaque.push_back(times.opaqueMs), samples.update.push_back(times.updateMs);
+  samples.pass3d.push_back(times.transparencyMs), samples.compose.push_back(times.composeMs);
+  samples.gpu.push_back(times.totalMs), samples.fragments.push_back(double(times.transparencyFragments));
+}
+
 int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
   if (o.scene != "demo" && o.scene != "paper" && o.scene != "heavy") Fail("--scene takes demo, paper or heavy");
   const int frames = o.frames > 0 ? o.frames : 60;
   std::printf("replay --bench --scene %s on %s, %d timed frames (medians)\n", o.scene.c_str(),
               device->GetAdapterName(), frames);
+  constexpr TranslucencyMethod kMethods[4] = {TranslucencyMethod::Alpha, TranslucencyMethod::Wboit,
+                                              TranslucencyMethod::Colored, TranslucencyMethod::Sorted};
   for (const BenchCase& bc : BenchCases(o)) {
     renderer::TranslucencySettings base = bc.settings;
     base.timestamps = true;
+    base.countParticles = false;
     const bool particles = base.demo != TranslucencyDemo::Shards;
     // Warm-up: the updates the smoke needs to reach its steady state (the longest life).
     const int warmup = o.warmup >= 0 ? o.warmup : particles ? int(base.rule.minLife + base.rule.lifeRange) : 2;
-    std::printf("\n%s: %ux%u, %s%s, %d warm-up frames\n", bc.name.c_str(), base.width, base.height,
-                renderer::ToString(base.demo), base.extraShards ? " + shards" : "", warmup);
+    std::printf("\n%s: %ux%u, %s%s, %d warm-up frames, the methods' frames interleaved\n", bc.name.c_str(),
+                base.width, base.height, renderer::ToString(base.demo), base.extraShards ? " + shards" : "", warmup);
     std::printf("%-8s %9s %9s %9s %9s %9s %9s %9s %9s %9s %10s %9s %9s\n", "method", "FPS(GPU)", "GPU ms", "opaque",
                 "update", "3D pass", "compose", "CPU ms", "wall ms", "particles", "shards", "3D Mfrag", "Gfrag/s");
-    double gpuMs[4] = {}, cpuMs[4] = {};
-    const TranslucencyMethod methods[4] = {TranslucencyMethod::Alpha, TranslucencyMethod::Wboit,
-                                           TranslucencyMethod::Colored, TranslucencyMethod::Sorted};
+    // One replay per method, each warmed up; then frame i of every method in turn, so that
+    // all methods see the same load on a shared machine (lavapipe's cores) over the run.
+    std::unique_ptr<renderer::Translucency> replays[4];
     for (int mi = 0; mi < 4; ++mi) {
-      renderer::TranslucencySettings s = base;
-      s.countParticles = false;
-      auto t = Make(device, ctx, s);
+      replays[mi] = Make(device, ctx, base);
       for (int i = 0; i < warmup; ++i) {
-        t->RenderFrame(methods[mi]);
-        t->LastTimes();
+        replays[mi]->RenderFrame(kMethods[mi]);
+        replays[mi]->LastTimes();
       }
-      std::vector<double> wall, cpu, opaque, update, pass3d, compose, gpu, fragments;
-      for (int i = 0; i < frames; ++i) {
-        auto start = std::chrono::steady_clock::now();
-        t->RenderFrame(methods[mi]);
-        auto recorded = std::chrono::steady_clock::now();
-        renderer::PassTimes times = t->LastTimes();  // waits for the GPU
-        auto done = std::chrono::steady_clock::now();
-        cpu.push_back(std::chrono::duration<double, std::milli>(recorded - start).count());
-        wall.push_back(std::chrono::duration<double, std::milli>(done - start).count());
-        if (!times.valid) continue;
-        opaque.push_back(times.opaqueMs), update.push_back(times.updateMs), pass3d.push_back(times.transparencyMs);
-        compose.push_back(times.composeMs), gpu.push_back(times.totalMs);
-        fragments.push_back(double(times.transparencyFragments));
-      }
-      gpuMs[mi] = Median(gpu), cpuMs[mi] = Median(cpu);
+    }
+    MethodSamples samples[4];
+    for (int i = 0; i < frames; ++i)
+      for (int mi = 0; mi < 4; ++mi) TimeFrame(*replays[mi], kMethods[mi], samples[mi]);
+    double gpuMs[4] = {}, cpuMs[4] = {};
+    for (int mi = 0; mi < 4; ++mi) {
+      renderer::Translucency& t = *replays[mi];
+      const MethodSamples& m = samples[mi];
+      gpuMs[mi] = Median(m.gpu), cpuMs[mi] = Median(m.cpu);
       // The live count of the last frame (an extra SO_STATISTICS frame, not timed).
       uint64_t live = 0;
       if (particles) {
-        t->RenderFrame(TranslucencyMethod::Sorted);  // the sorted method always counts
-        live = t->particleCount();
-        t->LastTimes();
+        t.RenderFrame(TranslucencyMethod::Sorted);  // the sorted method always counts
+        live = t.particleCount();
+        t.LastTimes();
       }
       // The 3D pass's fill rate: fragments shaded (and blended) per second.
-      const double pass3dMs = Median(pass3d), fragmentCount = Median(fragments);
+      const double pass3dMs = Median(m.pass3d), fragmentCount = Median(m.fragments);
       std::printf("%-8s %9.1f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9llu %10u %9.2f %9.2f\n",
-                  renderer::ToString(methods[mi]), gpuMs[mi] > 0 ? 1000.0 / gpuMs[mi] : 0.0, gpuMs[mi],
-                  Median(opaque), Median(update), pass3dMs, Median(compose), cpuMs[mi], Median(wall),
+                  renderer::ToString(kMethods[mi]), gpuMs[mi] > 0 ? 1000.0 / gpuMs[mi] : 0.0, gpuMs[mi],
+                  Median(m.opaque), Median(m.update), pass3dMs, Median(m.compose), cpuMs[mi], Median(m.wall),
                   static_cast<unsigned long long>(live),
                   base.demo == TranslucencyDemo::Shards ? base.shardCount : base.extraShards, fragmentCount / 1e6,
                   pass3dMs > 0 ? fragmentCount / (pass3dMs * 1e6) : 0.0);

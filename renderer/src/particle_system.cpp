@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include "hlsl/hlsl_compiler.h"
@@ -37,8 +38,8 @@ struct DrawParams {
 };
 
 bool Compile(const char* file, const char* entry, const char* profile, std::vector<uint32_t>* spirv,
-             std::string* error) {
-  hlsl::CompileResult result = hlsl::CompileHlslFile(kShaderDir + "/" + file, entry, profile, {kShaderDir});
+             std::string* error, const std::vector<hlsl::Define>& defines = {}) {
+  hlsl::CompileResult result = hlsl::CompileHlslFile(kShaderDir + "/" + file, entry, profile, {kShaderDir}, defines);
   if (!result.ok) {
     *error = result.FormatErrors();
     return false;
@@ -86,8 +87,9 @@ bool ParticleSystem::Initialize(Device* device, const ParticleSettings& settings
   std::vector<uint32_t> passCode, updateCode, particleCode, billboardCode, smokeCode;
   constexpr const char* kUpdate = "particles_update.hlsl";
   constexpr const char* kDraw = "particles_draw.hlsl";
+  const std::vector<hlsl::Define> maxSpawn = {{kMaxSpawnPerUpdateMacro, std::to_string(rule.spawnPerFrame)}};
   if (!Compile(kUpdate, "VSPassThrough", "vs_5_0", &passCode, error) ||
-      !Compile(kUpdate, "GSUpdate", "gs_5_0", &updateCode, error) ||
+      !Compile(kUpdate, "GSUpdate", "gs_5_0", &updateCode, error, maxSpawn) ||
       !Compile(kDraw, "VSParticle", "vs_5_0", &particleCode, error) ||
       !Compile(kDraw, "GSBillboard", "gs_5_0", &billboardCode, error) ||
       !Compile(kDraw, "PSSmoke", "ps_5_0", &smokeCode, error))

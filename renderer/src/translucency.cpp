@@ -7,6 +7,7 @@
 #include <limits>
 #include <numeric>
 #include <sstream>
+#include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -276,9 +277,11 @@ bool Translucency::Initialize(Device* device, DeviceContext* context, const Tran
     SUBRESOURCE_DATA init{data, 0, 0};
     return SUCCEEDED(device->CreateBuffer(&d, data ? &init : nullptr, out->GetAddressOf()));
   };
-  auto load = [&](const char* file, ComPtr<fx::Effect>* out) {
+  auto load = [&](const char* file, ComPtr<fx::Effect>* out,
+                  std::vector<std::pair<std::string, std::string>> defines = {}) {
     fx::EFFECT_OPTIONS options;
     options.IncludeDirs = {kShaderDir};
+    options.Defines = std::move(defines);
     std::string errors;
     options.Errors = &errors;
     if (FAILED(fx::CreateEffectFromFile((kShaderDir + "/" + file).c_str(), options, device, out->GetAddressOf()))) {
@@ -380,7 +383,8 @@ bool Translucency::Initialize(Device* device, DeviceContext* context, const Tran
     if (most * kParticleStride > (uint64_t(1) << 31)) return fail("the particle buffers (more than 2 GiB)");
     m.capacity = uint32_t(most);
 
-    if (!load("smoke.fx", &m.smokeFx)) return fail("smoke.fx");
+    if (!load("smoke.fx", &m.smokeFx, {{kMaxSpawnPerUpdateMacro, std::to_string(rule.spawnPerFrame)}}))
+      return fail("smoke.fx");
     fx::Effect* e = m.smokeFx.Get();
     m.updatePass = pass(e, "Update", "StreamOut");
     m.passes[int(TranslucencyMethod::Alpha)] = {pass(e, fire ? "Fire" : "Alpha", "Transparency"), nullptr};

@@ -312,6 +312,24 @@ TEST(HlslProfiles, GeometryShaderKeepsMaxVertexCount) {
             m.executionModes.end());
 }
 
+// The particle update GS declares as many output vertices as its loader's rule
+// spawns (MAX_SPAWN_PER_UPDATE, renderer::kMaxSpawnPerUpdateMacro) plus the emitter
+// itself, and the most the rule allows (16 + 1) when nothing defines it.
+TEST(HlslProfiles, ParticleUpdateDeclaresTheOutputItsLoaderDefines) {
+  const std::string shaders = PROJECT_SOURCE_ROOT "/shaders_hlsl";
+  auto outputVertices = [&](const std::vector<hlsl::Define>& defines) {
+    const CompileResult r =
+        hlsl::CompileHlslFile(shaders + "/particles_update.hlsl", "GSUpdate", "gs_5_0", {shaders}, defines);
+    EXPECT_TRUE(r.ok) << r.FormatErrors();
+    for (const std::vector<uint32_t>& mode : Module(r.spirv).executionModes)
+      if (mode.size() == 2 && mode[0] == kModeOutputVertices) return mode[1];
+    return 0u;
+  };
+  EXPECT_EQ(outputVertices({{"MAX_SPAWN_PER_UPDATE", "8"}}), 9u);
+  EXPECT_EQ(outputVertices({{"MAX_SPAWN_PER_UPDATE", "2"}}), 3u);
+  EXPECT_EQ(outputVertices({}), 17u);
+}
+
 TEST(HlslProfiles, ComputeShaderKeepsNumThreads) {
   const CompileResult r = Compile(kComputeShader, "main", "cs_5_0");
   ASSERT_COMPILED(r);

@@ -26,10 +26,14 @@ inline uint32_t ChildLifetime(uint32_t seed, uint32_t minLife, uint32_t lifeRang
 
 struct ParticleRule {
   uint32_t emitters = 1000;
-  uint32_t spawnPerFrame = 10;  // at most 16 (the update GS emits 17 vertices)
+  uint32_t spawnPerFrame = 10;  // at most 16 (the update GS emits at most 17 vertices)
   uint32_t minLife = 50;
   uint32_t lifeRange = 100;
 };
+
+// The update GS's macro (shaders_hlsl/particle_update.hlsli) for the rule's spawnPerFrame:
+// the GS then declares no more output than the rule spawns, which sets its cost on a GPU.
+inline constexpr const char* kMaxSpawnPerUpdateMacro = "MAX_SPAWN_PER_UPDATE";
 
 // Counts live particles update by update without simulating each one: a child
 // born in update f with lifetime L is alive after update F exactly when F - f < L.

@@ -53,11 +53,6 @@ Timing Measure(bool nativeDrawAuto, uint32_t particles, uint32_t frames) {
   ComPtr<RenderTargetView> rtv;
   device->CreateTexture2D(&desc, nullptr, target.GetAddressOf());
   device->CreateRenderTargetView(target.Get(), nullptr, rtv.GetAddressOf());
-  BLEND_DESC over{};
-  over.RenderTarget[0] = {TRUE, BLEND_SRC_ALPHA, BLEND_INV_SRC_ALPHA, BLEND_OP_ADD, BLEND_ONE, BLEND_INV_SRC_ALPHA,
-                          BLEND_OP_ADD, COLOR_WRITE_ENABLE_ALL};
-  ComPtr<BlendState> blend;
-  device->CreateBlendState(&over, blend.GetAddressOf());
   renderer::Camera camera;
   camera.eye = {0, 3, -8};
   camera.viewProj = glm::perspectiveLH_ZO(glm::radians(60.0f), 1280.0f / 720.0f, 0.1f, 100.0f) *
@@ -82,8 +77,6 @@ Timing Measure(bool nativeDrawAuto, uint32_t particles, uint32_t frames) {
     context->ClearRenderTargetView(rtv.Get(), clear);
     RenderTargetView* rt = rtv.Get();
     context->OMSetRenderTargets(1, &rt, nullptr);
-    context->OMSetBlendState(blend.Get(), nullptr, DEFAULT_SAMPLE_MASK);
-    context->OMSetDepthStencilState(nullptr, 0);
     VIEWPORT viewport{0, 0, 1280, 720, 0, 1};
     context->RSSetViewports(1, &viewport);
     system->Draw(context.Get(), camera);

@@ -1,11 +1,9 @@
 #include "renderer/particle_system.h"
 
+#include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <string>
 #include <vector>
-
-#include "hlsl/hlsl_compiler.h"
 
 namespace renderer {
 
@@ -23,29 +21,9 @@ struct Particle {
 };
 static_assert(sizeof(Particle) == kParticleStride);
 
-struct UpdateParams {
-  uint32_t frame, spawnPerFrame, minLife, lifeRange;
-  float spread[3];
-  float speedUp;
-};
-
-struct DrawParams {
-  float viewProj[16];
-  float eye[3];
-  float seconds;
-  float acceleration[3];
-  float size;
-};
-
-bool Compile(const char* file, const char* entry, const char* profile, std::vector<uint32_t>* spirv,
-             std::string* error, const std::vector<hlsl::Define>& defines = {}) {
-  hlsl::CompileResult result = hlsl::CompileHlslFile(kShaderDir + "/" + file, entry, profile, {kShaderDir}, defines);
-  if (!result.ok) {
-    *error = result.FormatErrors();
-    return false;
-  }
-  *spirv = std::move(result.spirv);
-  return true;
+void SetVector(fx::EffectVariable* v, const glm::vec3& x) {
+  const float f[4] = {x.x, x.y, x.z, 0};
+  v->AsVector()->SetFloatVector(f);
 }
 
 // A soft round puff: alpha falls off with the distance from the centre.
@@ -83,44 +61,31 @@ bool ParticleSystem::Initialize(Device* device, const ParticleSettings& settings
   // of children of the longest lifetime.
   const uint64_t most = uint64_t(rule.emitters) * (1 + uint64_t(rule.spawnPerFrame) * (rule.minLife + rule.lifeRange));
   capacity_ = settings.capacity ? settings.capacity : static_cast<uint32_t>(most);
-
-  std::vector<uint32_t> passCode, updateCode, particleCode, billboardCode, smokeCode;
-  constexpr const char* kUpdate = "particles_update.hlsl";
-  constexpr const char* kDraw = "particles_draw.hlsl";
-  const std::vector<hlsl::Define> maxSpawn = {{kMaxSpawnPerUpdateMacro, std::to_string(rule.spawnPerFrame)}};
-  if (!Compile(kUpdate, "VSPassThrough", "vs_5_0", &passCode, error) ||
-      !Compile(kUpdate, "GSUpdate", "gs_5_0", &updateCode, error, maxSpawn) ||
-      !Compile(kDraw, "VSParticle", "vs_5_0", &particleCode, error) ||
-      !Compile(kDraw, "GSBillboard", "gs_5_0", &billboardCode, error) ||
-      !Compile(kDraw, "PSSmoke", "ps_5_0", &smokeCode, error))
-    return false;
   auto fail = [&](const char* what) {
-    *error = std::string("ParticleSystem: ") + what + " failed";
+    if (error->empty()) *error = std::string("ParticleSystem: ") + what + " failed";
     return false;
   };
-  if (FAILED(device->CreateVertexShader(passCode.data(), passCode.size() * 4, nullptr, passThrough_.GetAddressOf())) ||
-      FAILED(device->CreateVertexShader(particleCode.data(), particleCode.size() * 4, nullptr,
-                                        particleVs_.GetAddressOf())) ||
-      FAILED(device->CreateGeometryShader(billboardCode.data(), billboardCode.size() * 4, nullptr,
-                                          billboard_.GetAddressOf())) ||
-      FAILED(device->CreatePixelShader(smokeCode.data(), smokeCode.size() * 4, nullptr, smoke_.GetAddressOf())))
-    return fail("creating the shaders");
 
-  const SO_DECLARATION_ENTRY decl[] = {{0, "ORIGIN", 0, 0, 3, 0},
-                                       {0, "VELOCITY", 0, 0, 3, 0},
-                                       {0, "SEEDAGE", 0, 0, 2, 0},
-                                       {0, "KINDLIFE", 0, 0, 2, 0}};
-  const UINT stride = kParticleStride;
-  if (FAILED(device->CreateGeometryShaderWithStreamOutput(updateCode.data(), updateCode.size() * 4, decl, 4, &stride,
-                                                          1, SO_NO_RASTERIZED_STREAM, nullptr,
-                                                          update_.GetAddressOf())))
-    return fail("CreateGeometryShaderWithStreamOutput");
+  // shaders_hlsl/particles.fx: technique Update (the stream-output pass) and Draw.
+  fx::EFFECT_OPTIONS options;
+  options.IncludeDirs = {kShaderDir};
+  options.Defines = {{kMaxSpawnPerUpdateMacro, std::to_string(rule.spawnPerFrame)}};
+  options.Errors = error;
+  if (FAILED(fx::CreateEffectFromFile((kShaderDir + "/particles.fx").c_str(), options, device,
+                                      effect_.GetAddressOf())))
+    return fail("loading particles.fx");
+  updatePass_ = effect_->GetTechniqueByName("Update")->GetPassByIndex(0);
+  drawPass_ = effect_->GetTechniqueByName("Draw")->GetPassByIndex(0);
+  fx::PASS_DESC update;
+  if (!updatePass_->IsValid() || !drawPass_->IsValid() || FAILED(updatePass_->GetDesc(&update)))
+    return fail("finding the Update and Draw passes");
   const INPUT_ELEMENT_DESC elements[] = {
       {"ORIGIN", 0, DXGI_FORMAT_R32G32B32_FLOAT, 0, 0, INPUT_PER_VERTEX_DATA, 0},
       {"VELOCITY", 0, DXGI_FORMAT_R32G32B32_FLOAT, 0, 12, INPUT_PER_VERTEX_DATA, 0},
       {"SEEDAGE", 0, DXGI_FORMAT_R32G32_UINT, 0, 24, INPUT_PER_VERTEX_DATA, 0},
       {"KINDLIFE", 0, DXGI_FORMAT_R32G32_UINT, 0, 32, INPUT_PER_VERTEX_DATA, 0}};
-  if (FAILED(device->CreateInputLayout(elements, 4, passCode.data(), passCode.size() * 4, layout_.GetAddressOf())))
+  if (FAILED(device->CreateInputLayout(elements, 4, update.pIAInputSignature, update.IAInputSignatureSize,
+                                       layout_.GetAddressOf())))
     return fail("CreateInputLayout");
 
   // The init buffer: the emitters, spread on a circle, drawn with Draw on the first update.
@@ -140,18 +105,6 @@ bool ParticleSystem::Initialize(Device* device, const ParticleSettings& settings
   BUFFER_DESC pingPong{capacity_ * kParticleStride, USAGE_DEFAULT, BIND_VERTEX_BUFFER | BIND_STREAM_OUTPUT, 0, 0, 0};
   for (auto& buffer : buffers_)
     if (FAILED(device->CreateBuffer(&pingPong, nullptr, buffer.GetAddressOf()))) return fail("a particle buffer");
-  BUFFER_DESC params{sizeof(UpdateParams), USAGE_DYNAMIC, BIND_CONSTANT_BUFFER, CPU_ACCESS_WRITE, 0, 0};
-  BUFFER_DESC drawParams{(sizeof(DrawParams) + 15) / 16 * 16, USAGE_DYNAMIC, BIND_CONSTANT_BUFFER, CPU_ACCESS_WRITE,
-                         0, 0};
-  if (FAILED(device->CreateBuffer(&params, nullptr, updateParams_.GetAddressOf())) ||
-      FAILED(device->CreateBuffer(&drawParams, nullptr, drawParams_.GetAddressOf())))
-    return fail("the constant buffers");
-
-  // The update pass rasterizes nothing: no pixel shader and depth disabled (document 000).
-  DEPTH_STENCIL_DESC noDepth{};
-  noDepth.DepthEnable = FALSE;
-  noDepth.DepthWriteMask = DEPTH_WRITE_MASK_ZERO;
-  if (FAILED(device->CreateDepthStencilState(&noDepth, noDepth_.GetAddressOf()))) return fail("the depth state");
 
   constexpr UINT kPuffSize = 64;
   std::vector<uint8_t> texels = PuffTexels(kPuffSize);
@@ -159,11 +112,25 @@ bool ParticleSystem::Initialize(Device* device, const ParticleSettings& settings
                           BIND_SHADER_RESOURCE, 0, 0};
   SUBRESOURCE_DATA puffData{texels.data(), kPuffSize * 4, 0};
   ComPtr<Texture2D> puff;
-  SAMPLER_DESC linear{};
+  ComPtr<ShaderResourceView> puffView;
   if (FAILED(device->CreateTexture2D(&puffDesc, &puffData, puff.GetAddressOf())) ||
-      FAILED(device->CreateShaderResourceView(puff.Get(), nullptr, puff_.GetAddressOf())) ||
-      FAILED(device->CreateSamplerState(&linear, linear_.GetAddressOf())))
+      FAILED(device->CreateShaderResourceView(puff.Get(), nullptr, puffView.GetAddressOf())))
     return fail("the puff texture");
+
+  // Constant for the system's life: the rule, the motion and the puff.
+  fx::Effect* e = effect_.Get();
+  e->GetVariableByName("SpawnPerFrame")->AsScalar()->SetInt(int(rule.spawnPerFrame));
+  e->GetVariableByName("MinLife")->AsScalar()->SetInt(int(rule.minLife));
+  e->GetVariableByName("LifeRange")->AsScalar()->SetInt(int(rule.lifeRange));
+  SetVector(e->GetVariableByName("Spread"), settings.spread);
+  e->GetVariableByName("SpeedUp")->AsScalar()->SetFloat(settings.speedUp);
+  e->GetVariableByName("Seconds")->AsScalar()->SetFloat(settings.secondsPerUpdate);
+  SetVector(e->GetVariableByName("Acceleration"), settings.acceleration);
+  e->GetVariableByName("Size")->AsScalar()->SetFloat(settings.size);
+  e->GetVariableByName("Puff")->AsShaderResource()->SetResource(puffView.Get());
+  frame_ = e->GetVariableByName("Frame")->AsScalar();
+  viewProj_ = e->GetVariableByName("ViewProj")->AsMatrix();
+  eye_ = e->GetVariableByName("Eye");
   return true;
 }
 
@@ -176,26 +143,14 @@ void ParticleSystem::BindParticleInput(DeviceContext* context, Buffer* buffer) {
 
 void ParticleSystem::Update(DeviceContext* context) {
   ++updates_;
-  const ParticleRule& rule = settings_.rule;
-  MAPPED_SUBRESOURCE mapped;
-  if (SUCCEEDED(context->Map(updateParams_.Get(), 0, MAP_WRITE_DISCARD, 0, &mapped))) {
-    UpdateParams params{updates_, rule.spawnPerFrame, rule.minLife, rule.lifeRange,
-                        {settings_.spread.x, settings_.spread.y, settings_.spread.z}, settings_.speedUp};
-    std::memcpy(mapped.pData, &params, sizeof params);
-    context->Unmap(updateParams_.Get(), 0);
-  }
+  frame_->SetInt(int(updates_));
   const bool first = updates_ == 1;
   const uint32_t target = first ? 0 : 1 - current_;
   BindParticleInput(context, first ? emitters_.Get() : buffers_[current_].Get());
-  context->VSSetShader(passThrough_.Get(), nullptr, 0);
-  context->GSSetShader(update_.Get(), nullptr, 0);
-  Buffer* cb = updateParams_.Get();
-  context->GSSetConstantBuffers(0, 1, &cb);
-  context->PSSetShader(nullptr, nullptr, 0);
-  context->OMSetDepthStencilState(noDepth_.Get(), 0);
   Buffer* out = buffers_[target].Get();
   UINT offset = 0;
   context->SOSetTargets(1, &out, &offset);
+  updatePass_->Apply(0, context);
   // The first frame draws the emitters; later frames draw what the last update wrote.
   if (first)
     context->Draw(settings_.rule.emitters, 0);
@@ -206,31 +161,10 @@ void ParticleSystem::Update(DeviceContext* context) {
 }
 
 void ParticleSystem::Draw(DeviceContext* context, const Camera& camera) {
-  MAPPED_SUBRESOURCE mapped;
-  if (SUCCEEDED(context->Map(drawParams_.Get(), 0, MAP_WRITE_DISCARD, 0, &mapped))) {
-    DrawParams params{};
-    // HLSL cbuffers are column_major by default: GLM's column-major storage matches.
-    std::memcpy(params.viewProj, &camera.viewProj[0][0], sizeof params.viewProj);
-    params.eye[0] = camera.eye.x, params.eye[1] = camera.eye.y, params.eye[2] = camera.eye.z;
-    params.seconds = settings_.secondsPerUpdate;
-    params.acceleration[0] = settings_.acceleration.x;
-    params.acceleration[1] = settings_.acceleration.y;
-    params.acceleration[2] = settings_.acceleration.z;
-    params.size = settings_.size;
-    std::memcpy(mapped.pData, &params, sizeof params);
-    context->Unmap(drawParams_.Get(), 0);
-  }
+  viewProj_->SetMatrixTranspose(&camera.viewProj[0][0]);  // GLM stores columns: FX11's row-major, transposed
+  SetVector(eye_, camera.eye);
   BindParticleInput(context, buffers_[current_].Get());
-  context->VSSetShader(particleVs_.Get(), nullptr, 0);
-  context->GSSetShader(billboard_.Get(), nullptr, 0);
-  context->PSSetShader(smoke_.Get(), nullptr, 0);
-  Buffer* cb = drawParams_.Get();
-  context->VSSetConstantBuffers(1, 1, &cb);
-  context->GSSetConstantBuffers(1, 1, &cb);
-  ShaderResourceView* srv = puff_.Get();
-  context->PSSetShaderResources(0, 1, &srv);
-  SamplerState* sampler = linear_.Get();
-  context->PSSetSamplers(0, 1, &sampler);
+  drawPass_->Apply(0, context);
   context->DrawAuto();
   context->GSSetShader(nullptr, nullptr, 0);
 }

@@ -316,10 +316,25 @@ TEST(HlslProfiles, GeometryShaderKeepsMaxVertexCount) {
 // spawns (MAX_SPAWN_PER_UPDATE, renderer::kMaxSpawnPerUpdateMacro) plus the emitter
 // itself, and the most the rule allows (16 + 1) when nothing defines it.
 TEST(HlslProfiles, ParticleUpdateDeclaresTheOutputItsLoaderDefines) {
-  const std::string shaders = PROJECT_SOURCE_ROOT "/shaders_hlsl";
+  // What an effect holding the update pass (shaders_hlsl/particles.fx, smoke.fx) compiles.
+  constexpr char kUpdate[] = R"(
+#include "particle.hlsli"
+#include "particle_rule.hlsli"
+cbuffer UpdateParams : register(b0) {
+  uint Frame, SpawnPerFrame, MinLife, LifeRange;
+  float3 Spread;
+  float SpeedUp;
+};
+#include "particle_update.hlsli"
+)";
   auto outputVertices = [&](const std::vector<hlsl::Define>& defines) {
-    const CompileResult r =
-        hlsl::CompileHlslFile(shaders + "/particles_update.hlsl", "GSUpdate", "gs_5_0", {shaders}, defines);
+    hlsl::CompileRequest request;
+    request.source = kUpdate;
+    request.entryPoint = "GSUpdate";
+    request.profile = "gs_5_0";
+    request.includeDirs = {PROJECT_SOURCE_ROOT "/shaders_hlsl"};
+    request.defines = defines;
+    const CompileResult r = hlsl::CompileHlsl(request);
     EXPECT_TRUE(r.ok) << r.FormatErrors();
     for (const std::vector<uint32_t>& mode : Module(r.spirv).executionModes)
       if (mode.size() == 2 && mode[0] == kModeOutputVertices) return mode[1];

@@ -369,7 +369,7 @@ CompileResult CompileHlsl(const CompileRequest& request) {
 }
 
 CompileResult CompileHlslFile(const std::string& path, const std::string& entryPoint, const std::string& profile,
-                              const std::vector<std::string>& includeDirs, const std::vector<Define>& defines) {
+                              const std::vector<std::string>& includeDirs) {
   std::ifstream file(path, std::ios::binary);
   if (!file) {
     CompileResult result;
@@ -384,7 +384,6 @@ CompileResult CompileHlslFile(const std::string& path, const std::string& entryP
   request.entryPoint = entryPoint;
   request.profile = profile;
   request.includeDirs = includeDirs;
-  request.defines = defines;
   return CompileHlsl(request);
 }
 

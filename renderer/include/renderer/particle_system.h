@@ -1,7 +1,7 @@
 // The GPU particle system of document 000: particles live only on the GPU,
 // updated each frame by a geometry shader whose output is streamed into one of
 // two buffers (ping-pong), and drawn with DrawAuto because the CPU never knows
-// how many survived.
+// how many survived. Both passes are techniques of shaders_hlsl/particles.fx.
 #pragma once
 
 #include <array>
@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "fx/effect.h"
 #include "renderer/particle_rule.h"
 #include "rhi/rhi.h"
 
@@ -39,7 +40,8 @@ class ParticleSystem {
 
   // One update pass: the current buffer in, the other out through stream output.
   void Update(rhi::DeviceContext* context);
-  // Billboards of the live particles with DrawAuto; blend, depth and targets are the caller's.
+  // Billboards of the live particles with DrawAuto, through the effect's Draw pass (OVER
+  // blending, depth tested and not written, no culling) into the caller's targets.
   void Draw(rhi::DeviceContext* context, const Camera& camera);
 
   // The buffer the last update wrote (what Draw draws).
@@ -59,14 +61,12 @@ class ParticleSystem {
   uint32_t current_ = 0;
   rhi::ComPtr<rhi::Buffer> emitters_;
   std::array<rhi::ComPtr<rhi::Buffer>, 2> buffers_;
-  rhi::ComPtr<rhi::Buffer> updateParams_, drawParams_;
   rhi::ComPtr<rhi::InputLayout> layout_;
-  rhi::ComPtr<rhi::VertexShader> passThrough_, particleVs_;
-  rhi::ComPtr<rhi::GeometryShader> update_, billboard_;
-  rhi::ComPtr<rhi::PixelShader> smoke_;
-  rhi::ComPtr<rhi::DepthStencilState> noDepth_;
-  rhi::ComPtr<rhi::ShaderResourceView> puff_;
-  rhi::ComPtr<rhi::SamplerState> linear_;
+  rhi::ComPtr<fx::Effect> effect_;
+  fx::EffectPass *updatePass_ = nullptr, *drawPass_ = nullptr;
+  fx::EffectScalarVariable* frame_ = nullptr;
+  fx::EffectMatrixVariable* viewProj_ = nullptr;
+  fx::EffectVariable* eye_ = nullptr;
 };
 
 // Bytes per particle in the stream-output buffers.

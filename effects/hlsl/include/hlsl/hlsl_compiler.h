@@ -159,8 +159,7 @@ CompileResult CompileHlsl(const CompileRequest& request);
 // CompileHlsl of the file at `path` (also the diagnostics' file name); a file
 // that cannot be read is an error "path: error: cannot read the file".
 CompileResult CompileHlslFile(const std::string& path, const std::string& entryPoint, const std::string& profile,
-                              const std::vector<std::string>& includeDirs = {},
-                              const std::vector<Define>& defines = {});
+                              const std::vector<std::string>& includeDirs = {});
 
 // Whether CompileRequest::isolate takes effect: false in ASan/TSan/MSan builds,
 // whose allocators deadlock in a child forked from a multithreaded process.

@@ -24,6 +24,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hlsl/hlsl_compiler.h"
@@ -225,6 +226,19 @@ struct Options {
   bool attributes = false;      // 12 more interpolated floats into the pixel shader
 };
 
+// The switches, each setting one Options flag.
+constexpr std::pair<const char*, bool Options::*> kSwitches[] = {
+    {"--varying", &Options::varying}, {"--depth", &Options::depth},   {"--sampled", &Options::sampled},
+    {"--gs", &Options::geometryShader}, {"--jitter", &Options::jitter}, {"--large", &Options::large},
+    {"--opacity", &Options::opacity}, {"--attributes", &Options::attributes},
+};
+
+bool ParseSwitch(const std::string& arg, Options* options) {
+  for (const auto& [name, flag] : kSwitches)
+    if (arg == name) return options->*flag = true;
+  return false;
+}
+
 Options ParseOptions(int argc, char** argv) {
   Options options;
   for (int i = 1; i < argc; ++i) {
@@ -239,23 +253,7 @@ Options ParseOptions(int argc, char** argv) {
       ++i;
     } else if (arg == "--overlap" && value && (options.overlap = std::atoi(value)) > 0) {
       ++i;
-    } else if (arg == "--varying") {
-      options.varying = true;
-    } else if (arg == "--depth") {
-      options.depth = true;
-    } else if (arg == "--sampled") {
-      options.sampled = true;
-    } else if (arg == "--gs") {
-      options.geometryShader = true;
-    } else if (arg == "--jitter") {
-      options.jitter = true;
-    } else if (arg == "--large") {
-      options.large = true;
-    } else if (arg == "--opacity") {
-      options.opacity = true;
-    } else if (arg == "--attributes") {
-      options.attributes = true;
-    } else {
+    } else if (!ParseSwitch(arg, &options)) {
       Fail("usage: blend_fill_bench [--size WxH] [--draws N>0] [--repeats R>0] [--varying] [--depth] "
            "[--overlap L dividing N] [--sampled] [--gs] [--jitter] [--large] [--opacity] [--attributes] "
            "(bad argument '" +

@@ -69,7 +69,7 @@ bool ParticleSystem::Initialize(Device* device, const ParticleSettings& settings
   // shaders_hlsl/particles.fx: technique Update (the stream-output pass) and Draw.
   fx::EFFECT_OPTIONS options;
   options.IncludeDirs = {kShaderDir};
-  options.Defines = {{kMaxSpawnPerUpdateMacro, std::to_string(rule.spawnPerFrame)}};
+  options.Defines = {MaxSpawnPerUpdateDefine(rule)};
   options.Errors = error;
   if (FAILED(fx::CreateEffectFromFile((kShaderDir + "/particles.fx").c_str(), options, device,
                                       effect_.GetAddressOf())))
@@ -166,7 +166,6 @@ void ParticleSystem::Draw(DeviceContext* context, const Camera& camera) {
   BindParticleInput(context, buffers_[current_].Get());
   drawPass_->Apply(0, context);
   context->DrawAuto();
-  context->GSSetShader(nullptr, nullptr, 0);
 }
 
 }  // namespace renderer

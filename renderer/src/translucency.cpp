@@ -383,8 +383,7 @@ bool Translucency::Initialize(Device* device, DeviceContext* context, const Tran
     if (most * kParticleStride > (uint64_t(1) << 31)) return fail("the particle buffers (more than 2 GiB)");
     m.capacity = uint32_t(most);
 
-    if (!load("smoke.fx", &m.smokeFx, {{kMaxSpawnPerUpdateMacro, std::to_string(rule.spawnPerFrame)}}))
-      return fail("smoke.fx");
+    if (!load("smoke.fx", &m.smokeFx, {MaxSpawnPerUpdateDefine(rule)})) return fail("smoke.fx");
     fx::Effect* e = m.smokeFx.Get();
     m.updatePass = pass(e, "Update", "StreamOut");
     m.passes[int(TranslucencyMethod::Alpha)] = {pass(e, fire ? "Fire" : "Alpha", "Transparency"), nullptr};

@@ -313,7 +313,7 @@ TEST(HlslProfiles, GeometryShaderKeepsMaxVertexCount) {
 }
 
 // The particle update GS declares as many output vertices as its loader's rule
-// spawns (MAX_SPAWN_PER_UPDATE, renderer::kMaxSpawnPerUpdateMacro) plus the emitter
+// spawns (MAX_SPAWN_PER_UPDATE: renderer::MaxSpawnPerUpdateDefine) plus the emitter
 // itself, and the most the rule allows (16 + 1) when nothing defines it.
 TEST(HlslProfiles, ParticleUpdateDeclaresTheOutputItsLoaderDefines) {
   // What an effect holding the update pass (shaders_hlsl/particles.fx, smoke.fx) compiles.

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace renderer {
@@ -31,9 +33,12 @@ struct ParticleRule {
   uint32_t lifeRange = 100;
 };
 
-// The update GS's macro (shaders_hlsl/particle_update.hlsli) for the rule's spawnPerFrame:
-// the GS then declares no more output than the rule spawns, which sets its cost on a GPU.
-inline constexpr const char* kMaxSpawnPerUpdateMacro = "MAX_SPAWN_PER_UPDATE";
+// The define an effect holding the update GS (shaders_hlsl/particle_update.hlsli) is
+// loaded with for this rule: the GS then declares no more output than the rule spawns,
+// which sets its cost on a GPU.
+inline std::pair<std::string, std::string> MaxSpawnPerUpdateDefine(const ParticleRule& rule) {
+  return {"MAX_SPAWN_PER_UPDATE", std::to_string(rule.spawnPerFrame)};
+}
 
 // Counts live particles update by update without simulating each one: a child
 // born in update f with lifetime L is alive after update F exactly when F - f < L.

@@ -1,16 +1,18 @@
 // replay: the translucency demos of document 000 (SPEC.md), headless and deterministic.
 //
-//   replay --demo smoke|fire|shards --method alpha|wboit|colored|sorted [--frames N] [--size WxH] --out DIR
+//   replay --list-methods | --list-scenes
+//       one line per registered transparency method (name, what it needs of the device,
+//       summary) or scene: the registries renderer/oit and renderer/scenes.h.
+//   replay --demo SCENE --method METHOD [--frames N] [--size WxH] --out DIR
 //       renders frames 0..N-1 (fixed time step, seeded, camera a function of the frame index)
-//       and writes DIR/<demo>_<method>_<frame>.png for the last frame
-//       (--all-frames: every frame; --literal-table4: colored composes with Table 4 as printed).
+//       and writes DIR/<scene>_<method>_<frame>.png for the last frame (--all-frames: every frame).
 //       fire: flames drawn with additive blending for alpha and sorted (order-independent).
 //   replay --figures --out DIR [--size WxH] [--frames N]
 //       fig1_smoke_alpha_wboit.png (alpha | WBOIT), fig_shards_wboit_colored_sorted.png
-//       (WBOIT | colored | sorted), fig_fire_additive_wboit_colored.png and per-method
-//       RMSE / PSNR against the sorted reference
+//       (WBOIT | colored | sorted), fig_fire_additive_wboit_colored.png and every
+//       method's RMSE / PSNR against the sorted reference
 //   replay --bench [--scene demo|paper|heavy] [--frames N] [--warmup N] [--size WxH]
-//       per method: FPS and frame ms from the GPU (TIMESTAMP queries inside a
+//       per registered method: FPS and frame ms from the GPU (TIMESTAMP queries inside a
 //       TIMESTAMP_DISJOINT query, median over N frames), per-pass GPU ms, CPU ms per frame
 //       (RenderFrame's recording and submission, median), wall ms; WBOIT/alpha ratio.
 //       demo:  the smoke and shards demos at --size (default 640x360);
@@ -26,6 +28,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -33,8 +36,7 @@
 #include "replay_window.h"
 #include "rhi/rhi.h"
 
-using renderer::TranslucencyDemo;
-using renderer::TranslucencyMethod;
+using renderer::oit::MethodInfo;
 
 namespace {
 
@@ -46,12 +48,12 @@ int gErrors = 0;
 }
 
 struct Options {
-  TranslucencyDemo demo = TranslucencyDemo::Smoke;
-  TranslucencyMethod method = TranslucencyMethod::Wboit;
+  std::string demo = "smoke";  // a scene of renderer::Scenes()
+  const MethodInfo* method = renderer::oit::FindMethod("wboit");
   int frames = -1;
   uint32_t width = 640, height = 360;
   std::string out = "out/replay";
-  bool figures = false, bench = false, allFrames = false, literalTable4 = false;
+  bool figures = false, bench = false, allFrames = false, listMethods = false, listScenes = false;
   std::string scene = "demo";  // --bench: demo | paper | heavy
   int warmup = -1;
 };
@@ -64,14 +66,25 @@ std::unique_ptr<renderer::Translucency> Make(rhi::Device* device, rhi::DeviceCon
   return t;
 }
 
-int DefaultFrames(TranslucencyDemo demo) { return demo == TranslucencyDemo::Shards ? 1 : 120; }
+void Render(renderer::Translucency& t, const MethodInfo& method) {
+  if (!t.RenderFrame(method)) Fail(t.error());
+}
 
 // Renders frames 0..frames-1 with one method and returns the last frame.
 std::vector<uint8_t> Replay(rhi::Device* device, rhi::DeviceContext* ctx, const renderer::TranslucencySettings& s,
-                            TranslucencyMethod method, int frames) {
+                            const MethodInfo& method, int frames) {
   auto t = Make(device, ctx, s);
-  for (int i = 0; i < frames; ++i) t->RenderFrame(method);
+  for (int i = 0; i < frames; ++i) Render(*t, method);
   return t->ReadFrame();
+}
+
+// The frames a replay of `settings` renders: --frames, else the scene's default.
+int Frames(const Options& o, const std::string& scene) { return o.frames > 0 ? o.frames : renderer::FindScene(scene)->defaultFrames; }
+
+const MethodInfo& Method(const char* name) {
+  const MethodInfo* m = renderer::oit::FindMethod(name);
+  if (!m) Fail(std::string("no method ") + name);
+  return *m;
 }
 
 void WritePng(const std::string& path, const std::vector<uint8_t>& rgba, uint32_t w, uint32_t h) {
@@ -93,52 +106,66 @@ std::vector<uint8_t> SideBySide(const std::vector<std::vector<uint8_t>>& images,
 
 int RunOne(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
   renderer::TranslucencySettings s;
-  s.demo = o.demo;
+  s.scene = o.demo;
   s.width = o.width, s.height = o.height;
-  s.literalTable4 = o.literalTable4;
-  const int frames = o.frames > 0 ? o.frames : DefaultFrames(o.demo);
+  const int frames = Frames(o, o.demo);
   auto t = Make(device, ctx, s);
   std::filesystem::create_directories(o.out);
   for (int i = 0; i < frames; ++i) {
-    t->RenderFrame(o.method);
+    Render(*t, *o.method);
     if (o.allFrames || i == frames - 1) {
       char name[256];
-      std::snprintf(name, sizeof name, "%s_%s_%04d.png", renderer::ToString(o.demo), renderer::ToString(o.method), i);
+      std::snprintf(name, sizeof name, "%s_%s_%04d.png", o.demo.c_str(), o.method->name, i);
       WritePng((std::filesystem::path(o.out) / name).string(), t->ReadFrame(), o.width, o.height);
     }
   }
   return 0;
 }
 
+int ListMethods() {
+  for (const MethodInfo* m : renderer::oit::Methods())
+    std::printf("%-16s needs: %-24s %s\n", m->name, renderer::oit::DescribeNeeds(m->needs).c_str(), m->summary);
+  return 0;
+}
+
+int ListScenes() {
+  for (const renderer::SceneInfo* s : renderer::Scenes())
+    std::printf("%-8s %4d frames  %s\n", s->name, s->defaultFrames, s->summary);
+  return 0;
+}
+
 int RunFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
   std::filesystem::create_directories(o.out);
-  const TranslucencyMethod methods[4] = {TranslucencyMethod::Alpha, TranslucencyMethod::Wboit,
-                                         TranslucencyMethod::Colored, TranslucencyMethod::Sorted};
-  std::printf("%-8s %-8s %10s %10s\n", "demo", "method", "RMSE", "PSNR dB");
-  for (TranslucencyDemo demo : {TranslucencyDemo::Smoke, TranslucencyDemo::Fire, TranslucencyDemo::Shards}) {
+  std::printf("%-8s %-16s %10s %10s\n", "demo", "method", "RMSE", "PSNR dB");
+  // Every scene with every method, measured against the sorted reference; the
+  // figures are the source document's, each of named methods.
+  struct Figure {
+    const char* scene;
+    const char* file;
+    std::vector<const char*> methods;
+  };
+  const Figure figures[] = {{"smoke", "fig1_smoke_alpha_wboit.png", {"alpha", "wboit"}},
+                            {"smoke", "smoke_wboit_colored_sorted.png", {"wboit", "colored", "sorted"}},
+                            {"fire", "fig_fire_additive_wboit_colored.png", {"alpha", "wboit", "colored"}},
+                            {"shards", "fig_shards_wboit_colored_sorted.png", {"wboit", "colored", "sorted"}}};
+  for (const renderer::SceneInfo* scene : renderer::Scenes()) {
     renderer::TranslucencySettings s;
-    s.demo = demo;
+    s.scene = scene->name;
     s.width = o.width, s.height = o.height;
-    const int frames = o.frames > 0 ? o.frames : DefaultFrames(demo);
-    std::vector<uint8_t> images[4];
-    for (int i = 0; i < 4; ++i) images[i] = Replay(device, ctx, s, methods[i], frames);
-    for (int i = 0; i < 4; ++i) {
-      double rmse = renderer::Rmse(images[i], images[3]);
-      std::printf("%-8s %-8s %10.3f %10.2f\n", renderer::ToString(demo), renderer::ToString(methods[i]), rmse,
-                  renderer::Psnr(rmse));
+    const int frames = Frames(o, scene->name);
+    std::map<std::string, std::vector<uint8_t>> images;
+    for (const MethodInfo* m : renderer::oit::Methods()) images[m->name] = Replay(device, ctx, s, *m, frames);
+    for (const MethodInfo* m : renderer::oit::Methods()) {
+      double rmse = renderer::Rmse(images[m->name], images["sorted"]);
+      std::printf("%-8s %-16s %10.3f %10.2f\n", scene->name, m->name, rmse, renderer::Psnr(rmse));
     }
-    uint32_t w = 0;
-    if (demo == TranslucencyDemo::Smoke) {
-      auto fig = SideBySide({images[0], images[1]}, o.width, o.height, &w);
-      WritePng((std::filesystem::path(o.out) / "fig1_smoke_alpha_wboit.png").string(), fig, w, o.height);
-      auto ref = SideBySide({images[1], images[2], images[3]}, o.width, o.height, &w);
-      WritePng((std::filesystem::path(o.out) / "smoke_wboit_colored_sorted.png").string(), ref, w, o.height);
-    } else if (demo == TranslucencyDemo::Fire) {
-      auto fig = SideBySide({images[0], images[1], images[2]}, o.width, o.height, &w);
-      WritePng((std::filesystem::path(o.out) / "fig_fire_additive_wboit_colored.png").string(), fig, w, o.height);
-    } else {
-      auto fig = SideBySide({images[1], images[2], images[3]}, o.width, o.height, &w);
-      WritePng((std::filesystem::path(o.out) / "fig_shards_wboit_colored_sorted.png").string(), fig, w, o.height);
+    for (const Figure& f : figures) {
+      if (std::string(f.scene) != scene->name) continue;
+      std::vector<std::vector<uint8_t>> panels;
+      for (const char* name : f.methods) panels.push_back(images.at(Method(name).name));
+      uint32_t w = 0;
+      auto fig = SideBySide(panels, o.width, o.height, &w);
+      WritePng((std::filesystem::path(o.out) / f.file).string(), fig, w, o.height);
     }
   }
   return 0;
@@ -160,24 +187,24 @@ std::vector<BenchCase> BenchCases(const Options& o) {
   std::vector<BenchCase> cases;
   if (o.scene == "paper") {
     renderer::TranslucencySettings s;
-    s.demo = TranslucencyDemo::Smoke;
+    s.scene = "smoke";
     s.width = 1280, s.height = 720;
     s.rule = {32, 2, 40, 60};  // steady state ~4,500 particles (the paper's demo: a few thousand)
     cases.push_back({"paper", s});
   } else if (o.scene == "heavy") {
     renderer::TranslucencySettings s;
-    s.demo = TranslucencyDemo::Smoke;
+    s.scene = "smoke";
     s.width = 1920, s.height = 1080;
     s.rule = {4096, 8, 20, 22};  // steady state ~1.0M particles (4096 * (1 + 8 * 30.5))
     s.particleSize = 0.05f;
     s.extraShards = 10000;
     cases.push_back({"heavy", s});
   } else {
-    for (TranslucencyDemo demo : {TranslucencyDemo::Smoke, TranslucencyDemo::Shards}) {
+    for (const char* scene : {"smoke", "shards"}) {
       renderer::TranslucencySettings s;
-      s.demo = demo;
+      s.scene = scene;
       s.width = o.width, s.height = o.height;
-      cases.push_back({renderer::ToString(demo), s});
+      cases.push_back({scene, s});
     }
   }
   return cases;
@@ -185,13 +212,13 @@ std::vector<BenchCase> BenchCases(const Options& o) {
 
 // The timed samples of one method (medians are taken at the end).
 struct MethodSamples {
-  std::vector<double> wall, cpu, opaque, update, pass3d, compose, gpu, fragments;
+  std::vector<double> wall, cpu, opaque, update, firstPass, laterPasses, gpu, fragments;
 };
 
 // Renders and times one frame of `t`; the GPU times only when its timestamps came back.
-void TimeFrame(renderer::Translucency& t, TranslucencyMethod method, MethodSamples& samples) {
+void TimeFrame(renderer::Translucency& t, const MethodInfo& method, MethodSamples& samples) {
   auto start = std::chrono::steady_clock::now();
-  t.RenderFrame(method);
+  Render(t, method);
   auto recorded = std::chrono::steady_clock::now();
   renderer::PassTimes times = t.LastTimes();  // waits for the GPU
   auto done = std::chrono::steady_clock::now();
@@ -199,8 +226,10 @@ void TimeFrame(renderer::Translucency& t, TranslucencyMethod method, MethodSampl
   samples.wall.push_back(std::chrono::duration<double, std::milli>(done - start).count());
   if (!times.valid) return;
   samples.opaque.push_back(times.opaqueMs), samples.update.push_back(times.updateMs);
-  samples.pass3d.push_back(times.transparencyMs), samples.compose.push_back(times.composeMs);
-  samples.gpu.push_back(times.totalMs), samples.fragments.push_back(double(times.transparencyFragments));
+  double later = 0;
+  for (size_t i = 1; i < times.methodPassMs.size(); ++i) later += times.methodPassMs[i];
+  samples.firstPass.push_back(times.methodPassMs.at(0)), samples.laterPasses.push_back(later);
+  samples.gpu.push_back(times.totalMs), samples.fragments.push_back(double(times.firstPassFragments));
 }
 
 int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
@@ -208,56 +237,59 @@ int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
   const int frames = o.frames > 0 ? o.frames : 60;
   std::printf("replay --bench --scene %s on %s, %d timed frames (medians)\n", o.scene.c_str(),
               device->GetAdapterName(), frames);
-  constexpr TranslucencyMethod kMethods[4] = {TranslucencyMethod::Alpha, TranslucencyMethod::Wboit,
-                                              TranslucencyMethod::Colored, TranslucencyMethod::Sorted};
+  const std::vector<const MethodInfo*>& methods = renderer::oit::Methods();
+  const size_t n = methods.size();
   for (const BenchCase& bc : BenchCases(o)) {
     renderer::TranslucencySettings base = bc.settings;
     base.timestamps = true;
     base.countParticles = false;
-    const bool particles = base.demo != TranslucencyDemo::Shards;
+    const bool particles = base.scene != "shards";
     // Warm-up: the updates the smoke needs to reach its steady state (the longest life).
     const int warmup = o.warmup >= 0 ? o.warmup : particles ? int(base.rule.minLife + base.rule.lifeRange) : 2;
     std::printf("\n%s: %ux%u, %s%s, %d warm-up frames, the methods' frames interleaved\n", bc.name.c_str(),
-                base.width, base.height, renderer::ToString(base.demo), base.extraShards ? " + shards" : "", warmup);
-    std::printf("%-8s %9s %9s %9s %9s %9s %9s %9s %9s %9s %10s %9s %9s\n", "method", "FPS(GPU)", "GPU ms", "opaque",
-                "update", "3D pass", "compose", "CPU ms", "wall ms", "particles", "shards", "3D Mfrag", "Gfrag/s");
+                base.width, base.height, base.scene.c_str(), base.extraShards ? " + shards" : "", warmup);
+    std::printf("%-16s %9s %9s %9s %9s %9s %9s %9s %9s %9s %10s %9s %9s %10s\n", "method", "FPS(GPU)", "GPU ms",
+                "opaque", "update", "3D pass", "later", "CPU ms", "wall ms", "particles", "shards", "3D Mfrag",
+                "Gfrag/s", "MiB");
     // One replay per method, each warmed up; then frame i of every method in turn, so that
     // all methods see the same load on a shared machine (lavapipe's cores) over the run.
-    std::unique_ptr<renderer::Translucency> replays[4];
-    for (int mi = 0; mi < 4; ++mi) {
+    std::vector<std::unique_ptr<renderer::Translucency>> replays(n);
+    for (size_t mi = 0; mi < n; ++mi) {
       replays[mi] = Make(device, ctx, base);
       for (int i = 0; i < warmup; ++i) {
-        replays[mi]->RenderFrame(kMethods[mi]);
+        Render(*replays[mi], *methods[mi]);
         replays[mi]->LastTimes();
       }
     }
-    MethodSamples samples[4];
+    std::vector<MethodSamples> samples(n);
     for (int i = 0; i < frames; ++i)
-      for (int mi = 0; mi < 4; ++mi) TimeFrame(*replays[mi], kMethods[mi], samples[mi]);
-    double gpuMs[4] = {}, cpuMs[4] = {};
-    for (int mi = 0; mi < 4; ++mi) {
+      for (size_t mi = 0; mi < n; ++mi) TimeFrame(*replays[mi], *methods[mi], samples[mi]);
+    std::map<std::string, double> gpuMs, cpuMs;
+    for (size_t mi = 0; mi < n; ++mi) {
       renderer::Translucency& t = *replays[mi];
       const MethodSamples& m = samples[mi];
-      gpuMs[mi] = Median(m.gpu), cpuMs[mi] = Median(m.cpu);
+      const char* name = methods[mi]->name;
+      gpuMs[name] = Median(m.gpu), cpuMs[name] = Median(m.cpu);
+      const double mib = double(t.MethodInstance(*methods[mi])->MemoryBytes()) / (1024.0 * 1024.0);
       // The live count of the last frame (an extra SO_STATISTICS frame, not timed).
       uint64_t live = 0;
       if (particles) {
-        t.RenderFrame(TranslucencyMethod::Sorted);  // the sorted method always counts
+        Render(t, Method("sorted"));  // a back-to-front method always counts
         live = t.particleCount();
         t.LastTimes();
       }
       // The 3D pass's fill rate: fragments shaded (and blended) per second.
-      const double pass3dMs = Median(m.pass3d), fragmentCount = Median(m.fragments);
-      std::printf("%-8s %9.1f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9llu %10u %9.2f %9.2f\n",
-                  renderer::ToString(kMethods[mi]), gpuMs[mi] > 0 ? 1000.0 / gpuMs[mi] : 0.0, gpuMs[mi],
-                  Median(m.opaque), Median(m.update), pass3dMs, Median(m.compose), cpuMs[mi], Median(m.wall),
-                  static_cast<unsigned long long>(live),
-                  base.demo == TranslucencyDemo::Shards ? base.shardCount : base.extraShards, fragmentCount / 1e6,
-                  pass3dMs > 0 ? fragmentCount / (pass3dMs * 1e6) : 0.0);
+      const double pass3dMs = Median(m.firstPass), fragmentCount = Median(m.fragments);
+      std::printf("%-16s %9.1f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9llu %10u %9.2f %9.2f %10.2f\n", name,
+                  gpuMs[name] > 0 ? 1000.0 / gpuMs[name] : 0.0, gpuMs[name], Median(m.opaque), Median(m.update),
+                  pass3dMs, Median(m.laterPasses), cpuMs[name], Median(m.wall), static_cast<unsigned long long>(live),
+                  base.scene == "shards" ? base.shardCount : base.extraShards, fragmentCount / 1e6,
+                  pass3dMs > 0 ? fragmentCount / (pass3dMs * 1e6) : 0.0, mib);
     }
     std::printf("%s: WBOIT/alpha GPU frame-time ratio %.3f (target <= 1.27; paper, smoke on D3D11: "
                 "1.183/0.935 = 1.265); CPU ms per frame: alpha %.3f, WBOIT %.3f\n",
-                bc.name.c_str(), gpuMs[0] > 0 ? gpuMs[1] / gpuMs[0] : 0.0, cpuMs[0], cpuMs[1]);
+                bc.name.c_str(), gpuMs["alpha"] > 0 ? gpuMs["wboit"] / gpuMs["alpha"] : 0.0, cpuMs["alpha"],
+                cpuMs["wboit"]);
   }
   return 0;
 }
@@ -267,7 +299,6 @@ int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
 int main(int argc, char** argv) {
   if (ReplayWindowRequested(argc, argv)) return RunReplayWindow(argc, argv);  // replay --window: app/replay_window.cpp
   Options o;
-  bool haveMethod = false;
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -275,10 +306,15 @@ int main(int argc, char** argv) {
       return argv[++i];
     };
     if (a == "--demo") {
-      if (!renderer::ParseDemo(next(), &o.demo)) Fail("--demo takes smoke, fire or shards");
+      o.demo = next();
+      if (!renderer::FindScene(o.demo)) Fail("--demo takes a scene: " + renderer::SceneNames());
     } else if (a == "--method") {
-      if (!renderer::ParseMethod(next(), &o.method)) Fail("--method takes alpha, wboit, colored or sorted");
-      haveMethod = true;
+      o.method = renderer::oit::FindMethod(next());
+      if (!o.method) Fail("--method takes a method: " + renderer::oit::MethodNames());
+    } else if (a == "--list-methods") {
+      o.listMethods = true;
+    } else if (a == "--list-scenes") {
+      o.listScenes = true;
     } else if (a == "--frames") {
       o.frames = std::atoi(next().c_str());
     } else if (a == "--size") {
@@ -297,15 +333,16 @@ int main(int argc, char** argv) {
       o.warmup = std::atoi(next().c_str());
     } else if (a == "--all-frames") {
       o.allFrames = true;
-    } else if (a == "--literal-table4") {
-      o.literalTable4 = true;
     } else {
       Fail("unknown argument " + a +
-           "\nusage: replay --demo smoke|fire|shards --method alpha|wboit|colored|sorted [--frames N] [--size WxH] --out DIR"
-           "\n       replay --figures --out DIR\n       replay --bench [--scene demo|paper|heavy] [--frames N] [--warmup N]");
+           "\nusage: replay --demo SCENE --method METHOD [--frames N] [--size WxH] --out DIR"
+           "\n       replay --list-methods | --list-scenes"
+           "\n       replay --figures --out DIR\n       replay --bench [--scene demo|paper|heavy] [--frames N] [--warmup N]"
+           "\n  scenes: " + renderer::SceneNames() + "\n  methods: " + renderer::oit::MethodNames());
     }
   }
-  (void)haveMethod;
+  if (o.listMethods) return ListMethods();
+  if (o.listScenes) return ListScenes();
   rhi::DEVICE_OPTIONS options;
   options.OnMessage = [](rhi::MESSAGE_CATEGORY, rhi::MESSAGE_SEVERITY severity, const char* text) {
     const bool error = severity <= rhi::MESSAGE_SEVERITY_ERROR;

@@ -1,7 +1,8 @@
 // replay --window: document 000's translucency demos in a GLFW window.
 //
-//   replay --window [--demo smoke|shards|fire] [--method alpha|wboit|colored|sorted] [--size WxH]
-//                   [--literal-table4] [--validation] [--screenshot PATH --frames N]
+//   replay --window [--demo SCENE] [--method METHOD] [--size WxH]
+//                   [--validation] [--screenshot PATH --frames N]
+// (SCENE and METHOD: names of the registries, replay --list-scenes / --list-methods)
 //
 // Each frame: renderer::Translucency renders the next frame offscreen (settings.timestamps
 // and settings.countParticles on, so the overlay has per-pass GPU times and the live
@@ -15,11 +16,11 @@
 //
 // Input: left-drag orbits the camera around the demo's target, the wheel zooms (both turn
 // the scripted camera into an orbit camera through Translucency::SetCameraOverride; C goes
-// back to the scripted one), 1-4 pick the method (alpha, wboit, colored, sorted), D cycles
-// the demo (smoke, shards, fire), Space pauses (no RenderFrame: the last frame stays), H hides the
+// back to the scripted one), 1-9 pick the method (the registry's order), D cycles
+// the scenes, Space pauses (no RenderFrame: the last frame stays), H hides the
 // overlay (its arrow collapses it), Esc quits. Parameters in
 // the overlay that are creation settings of Translucency (shard count, particle size,
-// Table 4 literal/corrected, ...) recreate it, which restarts the demo at frame 0.
+// ...) recreate it, which restarts the demo at frame 0.
 //
 // --screenshot PATH --frames N: after the N-th frame (frame index N-1, the frame headless
 // `replay --frames N` writes) the back buffer, overlay included, is read back through the
@@ -63,8 +64,7 @@
 #include "rhi/rhi.h"
 #include "rhi/swap_chain.h"
 
-using renderer::TranslucencyDemo;
-using renderer::TranslucencyMethod;
+using renderer::oit::MethodInfo;
 using rhi::ComPtr;
 using rhi::UINT;
 
@@ -73,12 +73,12 @@ namespace {
 int gErrors = 0;  // RHI errors and validation-layer messages of any severity
 
 struct Options {
-  TranslucencyDemo demo = TranslucencyDemo::Smoke;
-  TranslucencyMethod method = TranslucencyMethod::Wboit;
+  std::string demo = "smoke";  // a scene of renderer::Scenes()
+  const MethodInfo* method = renderer::oit::FindMethod("wboit");
   uint32_t width = 960, height = 540;
   std::string screenshot;
   int frames = 0;  // with --screenshot: frames before the capture; else 0 = until closed
-  bool literalTable4 = false, validation = false;
+  bool validation = false;
   bool testResize = false;  // resize the window to 800x450 after 3 frames, to 500x400 after 6
 };
 
@@ -86,13 +86,13 @@ constexpr UINT kTestResizeWidth = 500, kTestResizeHeight = 400;
 
 void Usage() {
   std::fprintf(stderr,
-               "usage: replay --window [--demo smoke|shards|fire] [--method alpha|wboit|colored|sorted] [--size WxH]\n"
-               "                       [--literal-table4] [--validation] [--screenshot PATH --frames N] [--test-resize]\n"
+               "usage: replay --window [--demo SCENE] [--method METHOD] [--size WxH]\n"
+               "                       [--validation] [--screenshot PATH --frames N] [--test-resize]\n"
                "  --screenshot PATH --frames N  after N frames write the back buffer (overlay included) as PNG\n"
                "                                and exit; prints the overlay window's rectangle\n"
                "  --test-resize                 resize the window to 800x450 after 3 frames, 500x400 after 6\n"
                "                                (the screenshot waits for the final size)\n"
-               "  keys: 1-4 method, D demo, Space pause, C scripted camera, H overlay on/off, Esc quit;\n"
+               "  keys: 1-9 method, D scene, Space pause, C scripted camera, H overlay on/off, Esc quit;\n"
                "        left-drag orbits, the wheel zooms\n");
 }
 
@@ -107,11 +107,11 @@ bool ParseOptions(int argc, char** argv, Options* o, std::string* error) {
     std::string v;
     if (a == "--window") {
     } else if (a == "--demo") {
-      if (!next(&v) || !renderer::ParseDemo(v, &o->demo))
-        return *error = "--demo takes smoke, shards or fire", false;
+      if (!next(&o->demo) || !renderer::FindScene(o->demo))
+        return *error = "--demo takes a scene: " + renderer::SceneNames(), false;
     } else if (a == "--method") {
-      if (!next(&v) || !renderer::ParseMethod(v, &o->method))
-        return *error = "--method takes alpha, wboit, colored or sorted", false;
+      if (!next(&v) || !(o->method = renderer::oit::FindMethod(v)))
+        return *error = "--method takes a method: " + renderer::oit::MethodNames(), false;
     } else if (a == "--size") {
       if (!next(&v) || std::sscanf(v.c_str(), "%ux%u", &o->width, &o->height) != 2 || !o->width || !o->height)
         return *error = "--size takes WxH", false;
@@ -119,8 +119,6 @@ bool ParseOptions(int argc, char** argv, Options* o, std::string* error) {
       if (!next(&o->screenshot)) return *error = "--screenshot takes a path", false;
     } else if (a == "--frames") {
       if (!next(&v) || (o->frames = std::atoi(v.c_str())) <= 0) return *error = "--frames takes N > 0", false;
-    } else if (a == "--literal-table4") {
-      o->literalTable4 = true;
     } else if (a == "--validation") {
       o->validation = true;
     } else if (a == "--test-resize") {
@@ -144,29 +142,27 @@ bool Compile(const char* entry, const char* profile, std::vector<uint32_t>* spir
   return true;
 }
 
-// D cycles smoke -> shards -> fire -> smoke.
-TranslucencyDemo NextDemo(TranslucencyDemo demo) {
-  switch (demo) {
-    case TranslucencyDemo::Smoke: return TranslucencyDemo::Shards;
-    case TranslucencyDemo::Shards: return TranslucencyDemo::Fire;
-    default: return TranslucencyDemo::Smoke;
-  }
+// D cycles through the scenes in the registry's order.
+std::string NextScene(const std::string& scene) {
+  const auto& scenes = renderer::Scenes();
+  for (size_t i = 0; i < scenes.size(); ++i)
+    if (scene == scenes[i]->name) return scenes[(i + 1) % scenes.size()]->name;
+  return scenes.front()->name;
 }
 
-const TranslucencyMethod kMethods[4] = {TranslucencyMethod::Alpha, TranslucencyMethod::Wboit,
-                                        TranslucencyMethod::Colored, TranslucencyMethod::Sorted};
+// The keys 1-9 pick the registry's first nine methods.
+constexpr size_t kMethodKeys = 9;
 
-// The orbit camera: yaw/pitch/distance around the demo's target. The targets and the
-// start pose are those of Translucency::CameraForFrame (renderer/src/translucency.cpp),
-// so taking over from the scripted camera does not jump.
+// The orbit camera: yaw/pitch/distance around the scene's target. The start pose is
+// that of Translucency::CameraForFrame (renderer/src/translucency.cpp), so taking
+// over from the scripted camera does not jump.
 struct Orbit {
   glm::vec3 target{0};
   float yaw = 0, pitch = 0, distance = 7;
 
-  void StartFromScripted(TranslucencyDemo demo, uint32_t frame) {
-    const bool shards = demo == TranslucencyDemo::Shards;
-    target = shards ? glm::vec3(0, 1.9f, 0) : glm::vec3(0.3f, 1.5f, 0.5f);
-    const float radius = shards ? 7.5f : 7.0f, height = 1.2f;
+  void StartFromScripted(const renderer::SceneInfo& scene, uint32_t frame) {
+    target = scene.cameraTarget;
+    const float radius = scene.cameraRadius, height = 1.2f;
     yaw = 0.3f * std::sin(float(frame) * 0.01f);
     pitch = std::atan2(height, radius);
     distance = std::sqrt(radius * radius + height * height);
@@ -186,10 +182,9 @@ class ReplayWindow {
  public:
   ReplayWindow(rhi::Device* device, rhi::DeviceContext* ctx, GLFWwindow* window, const Options& o)
       : device_(device), ctx_(ctx), window_(window), options_(o), method_(o.method) {
-    settings_.demo = o.demo;
+    settings_.scene = o.demo;
     settings_.width = o.width;
     settings_.height = o.height;
-    settings_.literalTable4 = o.literalTable4;
     settings_.timestamps = true;
     settings_.countParticles = true;
   }
@@ -217,7 +212,7 @@ class ReplayWindow {
   Options options_;
 
   renderer::TranslucencySettings settings_;  // what the next CreateScene uses
-  TranslucencyMethod method_;
+  const MethodInfo* method_;
   std::unique_ptr<renderer::Translucency> scene_;
   bool recreate_ = false, paused_ = false, quit_ = false, showOverlay_ = true;
   std::string sceneError_;  // why the last recreation failed
@@ -251,11 +246,13 @@ void ReplayWindow::OnKey(int key, int action, int) {
   if (action != GLFW_PRESS) return;
   if (ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureKeyboard) return;
   switch (key) {
-    case GLFW_KEY_1: case GLFW_KEY_2: case GLFW_KEY_3: case GLFW_KEY_4:
-      method_ = kMethods[key - GLFW_KEY_1];
+    case GLFW_KEY_1: case GLFW_KEY_2: case GLFW_KEY_3: case GLFW_KEY_4: case GLFW_KEY_5:
+    case GLFW_KEY_6: case GLFW_KEY_7: case GLFW_KEY_8: case GLFW_KEY_9:
+      if (size_t(key - GLFW_KEY_1) < renderer::oit::Methods().size())
+        method_ = renderer::oit::Methods()[key - GLFW_KEY_1];
       break;
     case GLFW_KEY_D:
-      settings_.demo = NextDemo(settings_.demo);
+      settings_.scene = NextScene(settings_.scene);
       recreate_ = true;
       break;
     case GLFW_KEY_SPACE: paused_ = !paused_; break;
@@ -292,7 +289,7 @@ void ReplayWindow::UpdateOrbitFromMouse() {
   }
   if (dx == 0 && dy == 0 && scroll_ == 0) return;
   if (!orbiting_ && scene_) {  // take over from the scripted camera of the current frame
-    orbit_.StartFromScripted(settings_.demo, scene_->frame());
+    orbit_.StartFromScripted(scene_->scene(), scene_->frame());
     orbiting_ = true;
   }
   orbit_.yaw -= float(dx) * 0.008f;  // drag right: the scene turns right
@@ -397,7 +394,7 @@ void ReplayWindow::BuildOverlay() {
 
   ImGui::Text("%s", device_->GetAdapterName());
   const uint32_t shown = scene_ && scene_->frame() > 0 ? scene_->frame() - 1 : 0;  // frame() is the next one
-  ImGui::Text("%s / %s, frame %u%s", renderer::ToString(settings_.demo), renderer::ToString(method_), shown,
+  ImGui::Text("%s / %s, frame %u%s", settings_.scene.c_str(), method_->name, shown,
               paused_ ? "  (paused)" : "");
   ImGui::Text("%.1f FPS, %.1f ms/frame", io.Framerate, io.Framerate > 0 ? 1000.0f / io.Framerate : 0.0f);
   if (!frameMs_.empty())
@@ -405,39 +402,47 @@ void ReplayWindow::BuildOverlay() {
                      std::max(1.0f, *std::max_element(frameMs_.begin(), frameMs_.end())), ImVec2(250, 28));
   // Per-pass GPU times of the last frame (TIMESTAMP queries inside TIMESTAMP_DISJOINT).
   if (times_.valid) {
-    ImGui::Text("GPU ms: opaque %.2f  update %.2f", times_.opaqueMs, times_.updateMs);
-    ImGui::Text("        3D %.2f  compose %.2f  total %.2f", times_.transparencyMs, times_.composeMs, times_.totalMs);
+    ImGui::Text("GPU ms: opaque %.2f  update %.2f  total %.2f", times_.opaqueMs, times_.updateMs, times_.totalMs);
+    // The method's passes by name (Method::PassNames), and its memory.
+    const renderer::oit::Method* method = scene_ ? scene_->MethodInstance(*method_) : nullptr;
+    for (size_t i = 0; method && i < times_.methodPassMs.size(); ++i)
+      ImGui::Text("        %s %.2f", method->PassNames()[i].c_str(), times_.methodPassMs[i]);
+    if (method) ImGui::Text("method memory: %.2f MiB", double(method->MemoryBytes()) / (1024.0 * 1024.0));
   } else {
     ImGui::TextDisabled("GPU ms: n/a (disjoint or not measured)");
   }
-  if (settings_.demo != TranslucencyDemo::Shards)
+  if (settings_.scene != "shards")
     ImGui::Text("live particles: %llu", static_cast<unsigned long long>(scene_ ? scene_->particleCount() : 0));
   else
     ImGui::Text("shards: %u (one DrawIndexedInstanced)", settings_.shardCount);
 
   ImGui::Separator();
+  const auto& methods = renderer::oit::Methods();
   int method = 0;
-  for (int i = 0; i < 4; ++i)
-    if (kMethods[i] == method_) method = i;
-  for (int i = 0; i < 4; ++i) {
-    if (i) ImGui::SameLine();
-    char label[32];
-    std::snprintf(label, sizeof label, "%d %s", i + 1, renderer::ToString(kMethods[i]));
-    if (ImGui::RadioButton(label, &method, i)) method_ = kMethods[i];
+  for (size_t i = 0; i < methods.size(); ++i)
+    if (methods[i] == method_) method = int(i);
+  for (size_t i = 0; i < methods.size(); ++i) {
+    if (i % 3) ImGui::SameLine();
+    char label[48];
+    if (i < kMethodKeys)
+      std::snprintf(label, sizeof label, "%zu %s", i + 1, methods[i]->name);
+    else
+      std::snprintf(label, sizeof label, "%s", methods[i]->name);
+    if (ImGui::RadioButton(label, &method, int(i))) method_ = methods[i];
   }
-  const TranslucencyDemo demos[3] = {TranslucencyDemo::Smoke, TranslucencyDemo::Shards, TranslucencyDemo::Fire};
-  int demo = 0;
-  for (int i = 0; i < 3; ++i)
-    if (demos[i] == settings_.demo) demo = i;
-  if (ImGui::Combo("demo (D)", &demo, "smoke\0shards\0fire\0")) {
-    settings_.demo = demos[demo];
-    recreate_ = true;
+  if (ImGui::BeginCombo("scene (D)", settings_.scene.c_str())) {
+    for (const renderer::SceneInfo* scene : renderer::Scenes())
+      if (ImGui::Selectable(scene->name, settings_.scene == scene->name)) {
+        settings_.scene = scene->name;
+        recreate_ = true;
+      }
+    ImGui::EndCombo();
   }
 
   if (ImGui::CollapsingHeader("Parameters (applying restarts the demo)")) {
     // Creation settings of Translucency: a changed value recreates it once the edit ends.
     auto apply = [&] { recreate_ |= ImGui::IsItemDeactivatedAfterEdit(); };
-    if (settings_.demo != TranslucencyDemo::Shards) {
+    if (settings_.scene != "shards") {
       ImGui::SliderFloat("particle size", &settings_.particleSize, 0.05f, 1.0f, "%.2f");
       apply();
       int spawn = int(settings_.rule.spawnPerFrame);
@@ -457,13 +462,12 @@ void ReplayWindow::BuildOverlay() {
       apply();
       recreate_ |= ImGui::Checkbox("all shards red", &settings_.shardsAllRed);
     }
-    recreate_ |= ImGui::Checkbox("literal Table 4 (colored; else corrected)", &settings_.literalTable4);
     recreate_ |= ImGui::Checkbox("neutral background", &settings_.neutralBackground);
   }
   if (!sceneError_.empty())
     ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.4f, 1.0f), "recreating failed: %.60s", sceneError_.c_str());
   ImGui::Text("camera: %s", orbiting_ ? "orbit (C: scripted)" : "scripted (drag/wheel: orbit)");
-  ImGui::TextDisabled("1-4 method  D demo  Space pause  H hide  Esc quit");
+  ImGui::TextDisabled("1-9 method  D scene  Space pause  H hide  Esc quit");
   ImGui::End();
 }
 
@@ -562,7 +566,11 @@ int ReplayWindow::Run() {
       scene_->SetCameraOverride(orbiting_ ? std::optional<renderer::Camera>(orbit_.ToCamera(settings_.width,
                                                                                              settings_.height))
                                           : std::nullopt);
-      scene_->RenderFrame(method_);
+      if (!scene_->RenderFrame(*method_)) {
+        std::fprintf(stderr, "replay: %s\n", scene_->error().c_str());
+        rc = 1;
+        break;
+      }
       times_ = scene_->LastTimes();
     }
     ctx_->ClearState();  // Translucency's bindings (GS, stream output, targets) end here

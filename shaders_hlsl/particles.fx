@@ -92,7 +92,7 @@ float4 PSSmoke(Billboard b) : SV_Target {
 }
 
 technique11 Update {
-  pass P0 {
+  pass StreamOut {
     SetVertexShader(CompileShader(vs_5_0, VSPassThrough()));
     SetGeometryShader(ConstructGSWithSO(CompileShader(gs_5_0, GSUpdate()),
                                         "ORIGIN.xyz; VELOCITY.xyz; SEEDAGE.xy; KINDLIFE.xy"));

@@ -1,7 +1,6 @@
 // Glass shards of document 000, hardware-instanced: one shard mesh (slot 0,
 // per vertex) and per-instance data (slot 1, INPUT_PER_INSTANCE_DATA): the world
 // matrix as four float4 columns WORLD0..3 and a tint (rgb transmission, a alpha).
-#include "translucency_outputs.hlsl"
 
 cbuffer ShardParams : register(b1) {
   float4x4 ViewProj;
@@ -50,25 +49,4 @@ void Shade(ShardPixel p, out float3 c, out float a, out float3 t) {
   c = surface * (0.35 + 0.45 * saturate(dot(n, l))) + spec;
   a = saturate(p.tint.a + 0.4 * fresnel);
   t = p.tint.rgb;
-}
-
-float4 PSShardOver(ShardPixel p) : SV_Target {
-  float3 c, t;
-  float a;
-  Shade(p, c, a, t);
-  return OverOutput(c, a);
-}
-
-WboitOut PSShardWboit(ShardPixel p) {
-  float3 c, t;
-  float a;
-  Shade(p, c, a, t);
-  return WboitOutput(c, a, p.position.z);
-}
-
-ColoredOut PSShardColored(ShardPixel p) {
-  float3 c, t;
-  float a;
-  Shade(p, c, a, t);
-  return ColoredOutput(c, a, t, p.position.z);
 }

@@ -1,31 +1,14 @@
-// The particle effect of document 000 (SPEC.md): the GPU particle system's two
-// passes, named passes of one effect.
-//   technique Update  pass StreamOut: pass-through VS, a GS that ages, spawns and
-//                     kills particles and streams the survivors out
-//                     (ConstructGSWithSO), NULL pixel shader, depth disabled.
-//   technique Alpha   pass Transparency: the point-to-billboard GS (camera-facing
-//                     basis z = (E-C)/|E-C|, x = (j x z)/|j x z|, y = z x x) and the
-//                     textured, normal-map-lit smoke PS with plain OVER blending
-//                     (also the sorted reference, drawn from a CPU-sorted copy).
-//   technique Wboit   pass Transparency (Table 1) + pass Compose (Table 2).
-//   technique Colored pass Transparency (Table 3) + pass Compose (Table 4 corrected);
-//   technique ColoredLiteral: the same with Table 4 as printed.
-//   technique Fire    pass Transparency: flames with additive blending.
-// Flame = 1 turns the smoke colour ramp into a flame ramp (the `fire` demo).
-// glslang 12 crashes on a source holding a PointStream GS and a TriangleStream GS:
-// the effect runtime blanks the other stream-type GS before compiling each entry.
+// The smoke and the flames of document 000 (SPEC.md) as a translucent object:
+// the particles that particles.fx's update pass streams out (renderer's
+// ParticleSystem), expanded by a geometry shader into camera-facing billboards
+// (basis z = (E-C)/|E-C|, x = (j x z)/|j x z|, y = z x x) and shaded with a
+// textured, normal-map-lit puff. A transparency method's passes come from
+// OIT_METHOD, the method's include (shaders_hlsl/oit/common.fxh gives the
+// contract this file fulfils).
+// Flame = 1 turns the smoke colour ramp into a flame ramp; built with FIRE
+// defined (the fire demo), OVER means additive blending, order-independent by
+// construction, in technique Fire.
 #include "particle.hlsli"
-#include "particle_rule.hlsli"
-#include "translucency_states.fxh"
-
-cbuffer UpdateParams : register(b0) {
-  uint Frame;          // index of this update, from 1
-  uint SpawnPerFrame;  // children per emitter per update
-  uint MinLife;
-  uint LifeRange;
-  float3 Spread;       // random initial velocity range
-  float SpeedUp;       // initial upward speed
-};
 
 cbuffer SmokeParams : register(b1) {
   float4x4 ViewProj;
@@ -39,14 +22,6 @@ cbuffer SmokeParams : register(b1) {
 
 Texture2D Puff;  // rgb: normal * 0.5 + 0.5, a: density
 SamplerState Linear { Filter = MIN_MAG_MIP_LINEAR; AddressU = Clamp; AddressV = Clamp; AddressW = Clamp; };
-
-// ---------------------------------------------------------------------------
-// Update pass
-
-#include "particle_update.hlsli"
-
-// ---------------------------------------------------------------------------
-// Draw pass
 
 struct Center {
   float3 center : CENTER;
@@ -120,53 +95,27 @@ void Shade(Billboard b, out float3 c, out float a, out float3 t) {
   }
 }
 
-#include "translucency_outputs.hlsl"
+#define OBJECT_VS VSSmoke
+#define OBJECT_GS CompileShader(gs_5_0, GSBillboard())
+#define OBJECT_PIXEL Billboard
 
-float4 PSSmokeOver(Billboard b) : SV_Target {
-  float3 c, t;
-  float a;
-  Shade(b, c, a, t);
-  return OverOutput(c, a);
-}
+#ifdef FIRE
+// The FIRE variant: additive (C = Cs*as + Cd).
+BlendState Additive {
+  BlendEnable[0] = TRUE;
+  SrcBlend[0] = SRC_ALPHA;
+  DestBlend[0] = ONE;
+  BlendOp[0] = ADD;
+  SrcBlendAlpha[0] = ZERO;
+  DestBlendAlpha[0] = ONE;
+  BlendOpAlpha[0] = ADD;
+};
+#define OVER_TECHNIQUE Fire
+#define OVER_BLEND Additive
+#endif
 
-WboitOut PSSmokeWboit(Billboard b) {
-  float3 c, t;
-  float a;
-  Shade(b, c, a, t);
-  return WboitOutput(c, a, b.position.z);
-}
-
-ColoredOut PSSmokeColored(Billboard b) {
-  float3 c, t;
-  float a;
-  Shade(b, c, a, t);
-  return ColoredOutput(c, a, t, b.position.z);
-}
-
-// ---------------------------------------------------------------------------
-
-technique11 Update {
-  pass StreamOut {
-    SetVertexShader(CompileShader(vs_5_0, VSPassThrough()));
-    SetGeometryShader(ConstructGSWithSO(CompileShader(gs_5_0, GSUpdate()),
-                                        "ORIGIN.xyz; VELOCITY.xyz; SEEDAGE.xy; KINDLIFE.xy"));
-    SetPixelShader(NULL);
-    SetDepthStencilState(NoDepth, 0);
-  }
-}
-
-#define SMOKE_TRANSPARENCY(ps, blend)                          \
-  pass Transparency {                                          \
-    SetVertexShader(CompileShader(vs_5_0, VSSmoke()));         \
-    SetGeometryShader(CompileShader(gs_5_0, GSBillboard()));   \
-    SetPixelShader(CompileShader(ps_5_0, ps()));               \
-    SetBlendState(blend, float4(0, 0, 0, 0), 0xFFFFFFFF);      \
-    SetDepthStencilState(DepthTestNoWrite, 0);                 \
-    SetRasterizerState(NoCull);                                \
-  }
-
-technique11 Alpha { SMOKE_TRANSPARENCY(PSSmokeOver, Over) }
-technique11 Wboit { SMOKE_TRANSPARENCY(PSSmokeWboit, WboitAccumulate) COMPOSE_PASS(WboitCompose) }
-technique11 Colored { SMOKE_TRANSPARENCY(PSSmokeColored, ColoredAccumulate) COMPOSE_PASS(ColoredCompose) }
-technique11 ColoredLiteral { SMOKE_TRANSPARENCY(PSSmokeColored, ColoredAccumulate) COMPOSE_PASS(ColoredComposeLiteral) }
-technique11 Fire { SMOKE_TRANSPARENCY(PSSmokeOver, Additive) }
+// Loaded on its own, as any FX file, the object is drawn with plain alpha blending.
+#ifndef OIT_METHOD
+#define OIT_METHOD "oit/alpha.fxh"
+#endif
+#include OIT_METHOD

@@ -5,13 +5,14 @@
 #include <string>
 #include <vector>
 
+#include "renderer/effect_files.h"
+#include "rhi/query_wait.h"
+
 namespace renderer {
 
 namespace {
 
 using namespace rhi;
-
-const std::string kShaderDir = PROJECT_SOURCE_ROOT "/shaders_hlsl";
 
 struct Particle {
   float origin[3];
@@ -53,27 +54,27 @@ std::unique_ptr<ParticleSystem> ParticleSystem::Create(Device* device, const Par
 bool ParticleSystem::Initialize(Device* device, const ParticleSettings& settings, std::string* error) {
   settings_ = settings;
   const ParticleRule& rule = settings.rule;
-  if (rule.spawnPerFrame > 16 || rule.lifeRange == 0) {
-    *error = "ParticleRule: spawnPerFrame must be at most 16 and lifeRange non-zero";
+  if (rule.spawnPerFrame > 16 || rule.lifeRange == 0 || rule.emitters == 0) {
+    *error = "ParticleRule: spawnPerFrame must be at most 16, lifeRange and emitters non-zero";
     return false;
   }
   // The most particles the rule can keep alive: every emitter with a full set
   // of children of the longest lifetime.
   const uint64_t most = uint64_t(rule.emitters) * (1 + uint64_t(rule.spawnPerFrame) * (rule.minLife + rule.lifeRange));
-  capacity_ = settings.capacity ? settings.capacity : static_cast<uint32_t>(most);
+  const uint64_t capacity = settings.capacity ? settings.capacity : most;
+  if (capacity * kParticleStride > (uint64_t(1) << 31)) {
+    *error = "ParticleSystem: the particle buffers would exceed 2 GiB (" + std::to_string(capacity) + " particles)";
+    return false;
+  }
+  capacity_ = static_cast<uint32_t>(capacity);
   auto fail = [&](const char* what) {
     if (error->empty()) *error = std::string("ParticleSystem: ") + what + " failed";
     return false;
   };
 
   // shaders_hlsl/particles.fx: technique Update (the stream-output pass) and Draw.
-  fx::EFFECT_OPTIONS options;
-  options.IncludeDirs = {kShaderDir};
-  options.Defines = {MaxSpawnPerUpdateDefine(rule)};
-  options.Errors = error;
-  if (FAILED(fx::CreateEffectFromFile((kShaderDir + "/particles.fx").c_str(), options, device,
-                                      effect_.GetAddressOf())))
-    return fail("loading particles.fx");
+  effect_ = LoadEffect(device, "particles.fx", {MaxSpawnPerUpdateDefine(rule)}, error);
+  if (!effect_) return false;
   updatePass_ = effect_->GetTechniqueByName("Update")->GetPassByIndex(0);
   drawPass_ = effect_->GetTechniqueByName("Draw")->GetPassByIndex(0);
   fx::PASS_DESC update;
@@ -131,6 +132,9 @@ bool ParticleSystem::Initialize(Device* device, const ParticleSettings& settings
   frame_ = e->GetVariableByName("Frame")->AsScalar();
   viewProj_ = e->GetVariableByName("ViewProj")->AsMatrix();
   eye_ = e->GetVariableByName("Eye");
+  QUERY_DESC statistics{QUERY_SO_STATISTICS, 0};
+  if (FAILED(device->CreateQuery(&statistics, streamOutStatistics_.GetAddressOf())))
+    return fail("the SO_STATISTICS query");
   return true;
 }
 
@@ -141,7 +145,8 @@ void ParticleSystem::BindParticleInput(DeviceContext* context, Buffer* buffer) {
   context->IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_POINTLIST);
 }
 
-void ParticleSystem::Update(DeviceContext* context) {
+void ParticleSystem::Update(DeviceContext* context, bool countLive) {
+  if (countLive) context->Begin(streamOutStatistics_.Get());
   ++updates_;
   frame_->SetInt(int(updates_));
   const bool first = updates_ == 1;
@@ -158,6 +163,11 @@ void ParticleSystem::Update(DeviceContext* context) {
     context->DrawAuto();
   context->SOSetTargets(0, nullptr, nullptr);
   current_ = target;
+  if (countLive) {
+    context->End(streamOutStatistics_.Get());
+    QUERY_DATA_SO_STATISTICS data{};
+    if (SUCCEEDED(WaitForData(context, streamOutStatistics_.Get(), &data))) liveCount_ = data.NumPrimitivesWritten;
+  }
 }
 
 void ParticleSystem::Draw(DeviceContext* context, const Camera& camera) {

@@ -5,7 +5,11 @@
 #include <cstring>
 #include <random>
 
-#include "oit_blend_tables.h"
+#include <fstream>
+#include <sstream>
+
+#include "fx/effect.h"
+#include "renderer/effect_files.h"
 #include "rhi_reference/blend.h"
 #include "rhi_reference/composite.h"
 #include "rhi_reference/tolerance.h"
@@ -64,12 +68,22 @@ V main(uint vid : SV_VertexID) {
   V o; o.pos = float4(x / 2.0 - 1.0, 1.0 - y / 2.0, Layers[quad].depth.x, 1.0); o.id = quad; return o;
 })";
 
+// shaders_hlsl/oit/wboit_weight.hlsli, the one definition of Table 1's weight.
+std::string WeightSource() {
+  const std::string path = renderer::ShaderDirectory() + "/oit/wboit_weight.hlsli";
+  std::ifstream file(path);
+  if (!file) throw std::runtime_error("cannot read " + path);
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
 std::string AccumulatePS(bool colored) {
   std::string s = R"(
 struct Layer { float4 color; float4 transmission; float4 depth; };
 StructuredBuffer<Layer> Layers : register(t0);
 )";
-  s += oit::kWboitWeightHlsl;
+  s += WeightSource();
   s += "struct Out { float4 accum : SV_Target0; float4 reveal : SV_Target1;";
   if (colored) s += " float4 frame : SV_Target2;";
   s += R"( };
@@ -122,13 +136,75 @@ ref::Float4 ComposeSource(const ref::StoredColor& accum, const ref::StoredColor&
 
 }  // namespace
 
+OitTables LoadOitTables(Gpu& gpu, OitMethod method) {
+  struct Source {
+    const char* method;  // the registered method whose include holds the blocks
+    const char* accumulate;
+    const char* compose;
+  };
+  const Source source = method == OitMethod::Wboit ? Source{"wboit", "WboitAccumulate", "WboitCompose"}
+                        : method == OitMethod::ColoredLiteral
+                            ? Source{"colored-literal", "ColoredAccumulate", "ColoredComposeLiteral"}
+                            : Source{"colored", "ColoredAccumulate", "ColoredCompose"};
+  std::string error;
+  ComPtr<fx::Effect> effect =
+      renderer::oit::LoadMethodEffect(gpu.device(), *renderer::oit::FindMethod(source.method), nullptr, {}, &error);
+  if (!effect) throw std::runtime_error(error);
+  OitTables tables;
+  if (effect->GetVariableByName(source.accumulate)->AsBlend()->GetBackingStore(0, &tables.accumulate) != S_OK ||
+      effect->GetVariableByName(source.compose)->AsBlend()->GetBackingStore(0, &tables.compose) != S_OK)
+    throw std::runtime_error(std::string("no blend states ") + source.accumulate + ", " + source.compose);
+  return tables;
+}
+
+std::vector<float> WboitWeights(Gpu& gpu, const std::vector<std::array<float, 2>>& alphaDepth) {
+  const std::string cs = WeightSource() + R"(
+StructuredBuffer<float2> Inputs : register(t0);
+RWStructuredBuffer<float> Weights : register(u0);
+[numthreads(1, 1, 1)] void main(uint3 id : SV_DispatchThreadID) { Weights[id.x] = WboitWeight(Inputs[id.x].x, Inputs[id.x].y); }
+)";
+  const std::vector<uint32_t> spirv = Gpu::Compile(cs, "cs_5_0");
+  Device* device = gpu.device();
+  DeviceContext* ctx = gpu.context();
+  const UINT n = static_cast<UINT>(alphaDepth.size());
+  ComPtr<ComputeShader> shader;
+  ComPtr<Buffer> output, staging;
+  ComPtr<UnorderedAccessView> uav;
+  auto inputs = gpu.StructuredSRV(alphaDepth.data(), sizeof(float) * 2, n);
+  BUFFER_DESC outputDesc{n * 4, USAGE_DEFAULT, BIND_UNORDERED_ACCESS, 0, RESOURCE_MISC_BUFFER_STRUCTURED, 4};
+  BUFFER_DESC stagingDesc{n * 4, USAGE_STAGING, 0, CPU_ACCESS_READ, 0, 0};
+  if (device->CreateComputeShader(spirv.data(), spirv.size() * 4, nullptr, shader.GetAddressOf()) != S_OK ||
+      device->CreateBuffer(&outputDesc, nullptr, output.GetAddressOf()) != S_OK ||
+      device->CreateUnorderedAccessView(output.Get(), nullptr, uav.GetAddressOf()) != S_OK ||
+      device->CreateBuffer(&stagingDesc, nullptr, staging.GetAddressOf()) != S_OK)
+    throw std::runtime_error("WboitWeights: creating the compute pass failed");
+  ShaderResourceView* srv = inputs.Get();
+  UnorderedAccessView* view = uav.Get();
+  ctx->CSSetShader(shader.Get(), nullptr, 0);
+  ctx->CSSetShaderResources(0, 1, &srv);
+  ctx->CSSetUnorderedAccessViews(0, 1, &view, nullptr);
+  ctx->Dispatch(n, 1, 1);
+  ctx->ClearState();
+  ctx->CopyResource(staging.Get(), output.Get());
+  MAPPED_SUBRESOURCE mapped{};
+  if (ctx->Map(staging.Get(), 0, MAP_READ, 0, &mapped) != S_OK) throw std::runtime_error("WboitWeights: Map failed");
+  std::vector<float> weights(static_cast<const float*>(mapped.pData), static_cast<const float*>(mapped.pData) + n);
+  ctx->Unmap(staging.Get(), 0);
+  return weights;
+}
+
 OitResult RunOitFixture(Gpu& gpu, OitMethod method, const OitScene& scene) {
   const bool colored = method != OitMethod::Wboit;
-  const BLEND_DESC accumulateDesc = colored ? oit::ColoredAccumulateBlend() : oit::WboitAccumulateBlend();
-  const BLEND_DESC composeDesc = method == OitMethod::Wboit           ? oit::WboitComposeBlend()
-                                 : method == OitMethod::ColoredLiteral ? oit::ColoredComposeBlendLiteral()
-                                                                       : oit::ColoredComposeBlendCorrected();
+  const OitTables tables = LoadOitTables(gpu, method);
+  const BLEND_DESC& accumulateDesc = tables.accumulate;
+  const BLEND_DESC& composeDesc = tables.compose;
   DeviceContext* ctx = gpu.context();
+  // The CPU model's weights: the GPU's evaluation of the one definition, per pixel and layer.
+  std::vector<std::array<float, 2>> alphaDepth;
+  for (int p = 0; p < kOitPixels; ++p)
+    for (const OitLayer& l : scene.layers[p]) alphaDepth.push_back({l.color[3], l.depth});
+  const std::vector<float> weights = WboitWeights(gpu, alphaDepth);
+  auto weight = [&](int pixel, int layer) { return weights[pixel * kOitLayers + layer]; };
 
   // Targets.
   auto accum = gpu.Texture(kW, kW, kAccum, BIND_RENDER_TARGET | BIND_SHADER_RESOURCE);
@@ -232,7 +308,7 @@ OitResult RunOitFixture(Gpu& gpu, OitMethod method, const OitScene& scene) {
       const OitLayer& s = scene.layers[p][l];
       const float al = s.color[3];
       // SV_Position.z = the viewport-transformed z of the quad: the layer's depth.
-      const float w = oit::WboitWeight(al, s.depth);
+      const float w = weight(p, l);
       const ref::Float4 o0{s.color[0] * al * w, s.color[1] * al * w, s.color[2] * al * w, al * w};
       const ref::Float4 o1{al, al, al, al};
       a = ref::BlendResult(kAccum, accumulateDesc, 0, unusedFactor, o0, o0, a).stored;
@@ -263,8 +339,9 @@ OitResult RunOitFixture(Gpu& gpu, OitMethod method, const OitScene& scene) {
 
     // The method's intent in double precision.
     double sumA = 0, prodA = 1, prodT[3] = {1, 1, 1}, sumC[3] = {0, 0, 0};
-    for (const OitLayer& s : scene.layers[p]) {
-      const double al = s.color[3], w = oit::WboitWeight(s.color[3], s.depth);
+    for (int l = 0; l < kOitLayers; ++l) {
+      const OitLayer& s = scene.layers[p][l];
+      const double al = s.color[3], w = weight(p, l);
       sumA += al * w;
       prodA *= 1 - al;
       for (int c = 0; c < 3; ++c) {

@@ -1,6 +1,7 @@
 // SPEC.md doc 000 tables 1-4 as a GPU fixture: overlapping translucent layers
 // rendered through each table's exact passes, and the same passes on the CPU
-// through rhi::reference::BlendResult.
+// through rhi::reference::BlendResult. The tables and the weight are read from
+// the renderer's effect files, never restated.
 #pragma once
 
 #include <array>
@@ -47,6 +48,17 @@ struct OitResult {
   uint32_t accumSteps = 0, revealageSteps = 0, stageSteps = 0, chainSteps = 0, overSteps = 0, intentSteps = 0;
   std::vector<std::string> validation, refusals;
 };
+
+// The method's accumulating and composing blend states, read from its effect
+// include's state blocks (shaders_hlsl/oit/*.fxh), where the tables live.
+struct OitTables {
+  rhi::BLEND_DESC accumulate, compose;
+};
+OitTables LoadOitTables(Gpu& gpu, OitMethod method);
+
+// Table 1's weight w(a, z) for each (a, z), evaluated on the GPU by a compute
+// shader that includes shaders_hlsl/oit/wboit_weight.hlsli, the one definition.
+std::vector<float> WboitWeights(Gpu& gpu, const std::vector<std::array<float, 2>>& alphaDepth);
 
 OitResult RunOitFixture(Gpu& gpu, OitMethod method, const OitScene& scene);
 

@@ -8,7 +8,6 @@
 // an approximation).
 #include <gtest/gtest.h>
 
-#include "oit_blend_tables.h"
 #include "oit_fixture.h"
 #include "rhi_reference/tolerance.h"
 
@@ -69,18 +68,31 @@ TEST(OitTables, Table3AndCorrected4GiveColoredOitIntent) {
 }
 
 TEST(OitTables, Table4LiteralAndCorrectedDifferOnlyInSourceFactor) {
-  const rhi::BLEND_DESC lit = oit::ColoredComposeBlendLiteral(), fix = oit::ColoredComposeBlendCorrected();
+  Gpu gpu(nullptr, true);
+  ASSERT_TRUE(gpu.ok());
+  const rhi::BLEND_DESC lit = LoadOitTables(gpu, OitMethod::ColoredLiteral).compose;
+  const rhi::BLEND_DESC fix = LoadOitTables(gpu, OitMethod::ColoredCorrected).compose;
   EXPECT_EQ(lit.RenderTarget[0].SrcBlend, rhi::BLEND_INV_SRC_ALPHA);
   EXPECT_EQ(fix.RenderTarget[0].SrcBlend, rhi::BLEND_SRC_ALPHA);
   EXPECT_EQ(lit.RenderTarget[0].DestBlend, rhi::BLEND_ONE);
   EXPECT_EQ(fix.RenderTarget[0].DestBlend, rhi::BLEND_ONE);
-  // The weight formula of Table 1 at a few points (computed by hand):
+  EXPECT_TRUE(gpu.validation().empty());
+}
+
+// The weight formula of Table 1 at a few points computed by hand, evaluated by the GPU
+// from shaders_hlsl/oit/wboit_weight.hlsli.
+TEST(OitTables, Table1WeightAtHandComputedPoints) {
+  Gpu gpu(nullptr, true);
+  ASSERT_TRUE(gpu.ok());
+  const std::vector<float> w = WboitWeights(gpu, {{0.05f, 0.0f}, {0.0f, 1.0f}, {0.0f, 0.5f}});
+  ASSERT_EQ(w.size(), 3u);
   // a=0.05, z=0: (0.5+0.01)^3*1e8 = 1.3265e7 -> clamped to 3e3.
-  EXPECT_FLOAT_EQ(oit::WboitWeight(0.05f, 0.0f), 3e3f);
+  EXPECT_FLOAT_EQ(w[0], 3e3f);
   // a=0, z=1: 0.01^3*1e8*0.1^3 = 1e-1.
-  EXPECT_NEAR(oit::WboitWeight(0.0f, 1.0f), 0.1f, 1e-6f);
+  EXPECT_NEAR(w[1], 0.1f, 1e-6f);
   // a=0, z=0.5: 1e-6*1e8*0.55^3 = 16.6375.
-  EXPECT_NEAR(oit::WboitWeight(0.0f, 0.5f), 16.6375f, 1e-3f);
+  EXPECT_NEAR(w[2], 16.6375f, 1e-3f);
+  for (const std::string& m : gpu.validation()) ADD_FAILURE() << "validation layer: " << m;
 }
 
 }  // namespace

@@ -290,7 +290,7 @@ TEST_F(EffectTest, WboitPassesComposeOneLayer) {
   // A quad in front of everything (z = 0.5), drawn as a triangle strip.
   const float quad[] = {-1, -1, 0.5f, -1, 1, 0.5f, 1, -1, 0.5f, 1, 1, 0.5f};
   auto vb = MakeBuffer(rhi::BIND_VERTEX_BUFFER, quad, sizeof quad);
-  fx::EffectTechnique* wboit = effect->GetTechniqueByName("WBOIT");
+  fx::EffectTechnique* wboit = effect->GetTechniqueByName("Wboit");
   fx::PASS_DESC pd;
   wboit->GetPassByName("Transparency")->GetDesc(&pd);
   const rhi::INPUT_ELEMENT_DESC element{"POSITION", 0, rhi::DXGI_FORMAT_R32G32B32_FLOAT, 0, 0,
@@ -313,8 +313,8 @@ TEST_F(EffectTest, WboitPassesComposeOneLayer) {
 
   rhi::RenderTargetView* frameRtv = frame.rtv.Get();
   context->OMSetRenderTargets(1, &frameRtv, nullptr);
-  effect->GetVariableByName("AccumTexture")->AsShaderResource()->SetResource(accumSrv.Get());
-  effect->GetVariableByName("RevealageTexture")->AsShaderResource()->SetResource(revealSrv.Get());
+  effect->GetVariableByName("Accum")->AsShaderResource()->SetResource(accumSrv.Get());
+  effect->GetVariableByName("Revealage")->AsShaderResource()->SetResource(revealSrv.Get());
   context->IASetPrimitiveTopology(rhi::PRIMITIVE_TOPOLOGY_TRIANGLELIST);
   ASSERT_EQ(wboit->GetPassByName("Compose")->Apply(0, context.Get()), rhi::S_OK);
   context->Draw(3, 0);

@@ -39,11 +39,11 @@ TEST_F(EffectTest, ReflectsTechniquesPassesAndVariables) {
   effect->GetDesc(&desc);
   EXPECT_EQ(desc.Techniques, 1u);
   EXPECT_EQ(desc.ConstantBuffers, 1u);
-  fx::EffectTechnique* wboit = effect->GetTechniqueByName("WBOIT");
+  fx::EffectTechnique* wboit = effect->GetTechniqueByName("Wboit");
   ASSERT_TRUE(wboit->IsValid());
   fx::TECHNIQUE_DESC td;
   wboit->GetDesc(&td);
-  EXPECT_STREQ(td.Name, "WBOIT");
+  EXPECT_STREQ(td.Name, "Wboit");
   EXPECT_EQ(td.Passes, 2u);
   fx::PASS_DESC pd;
   ASSERT_EQ(wboit->GetPassByName("Compose")->GetDesc(&pd), rhi::S_OK);
@@ -60,8 +60,8 @@ TEST_F(EffectTest, ReflectsTechniquesPassesAndVariables) {
   EXPECT_FALSE(effect->GetVariableByName("WorldViewProj")->AsScalar()->IsValid());
   EXPECT_FALSE(effect->GetVariableByName("WorldViewProj")->AsVector()->IsValid());
   EXPECT_TRUE(effect->GetVariableByName("Color")->AsVector()->IsValid());
-  EXPECT_TRUE(effect->GetVariableByName("AccumTexture")->AsShaderResource()->IsValid());
-  EXPECT_FALSE(effect->GetVariableByName("AccumTexture")->AsSampler()->IsValid());
+  EXPECT_TRUE(effect->GetVariableByName("Accum")->AsShaderResource()->IsValid());
+  EXPECT_FALSE(effect->GetVariableByName("Accum")->AsSampler()->IsValid());
   EXPECT_TRUE(effect->GetVariableByName("WboitAccumulate")->AsBlend()->IsValid());
   EXPECT_TRUE(effect->GetVariableByName("DepthTestNoWrite")->AsDepthStencil()->IsValid());
   EXPECT_TRUE(effect->GetVariableByName("NoCull")->AsRasterizer()->IsValid());

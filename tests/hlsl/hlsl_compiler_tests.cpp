@@ -316,7 +316,7 @@ TEST(HlslProfiles, GeometryShaderKeepsMaxVertexCount) {
 // spawns (MAX_SPAWN_PER_UPDATE: renderer::MaxSpawnPerUpdateDefine) plus the emitter
 // itself, and the most the rule allows (16 + 1) when nothing defines it.
 TEST(HlslProfiles, ParticleUpdateDeclaresTheOutputItsLoaderDefines) {
-  // What an effect holding the update pass (shaders_hlsl/particles.fx, smoke.fx) compiles.
+  // What an effect holding the update pass (shaders_hlsl/particles.fx) compiles.
   constexpr char kUpdate[] = R"(
 #include "particle.hlsli"
 #include "particle_rule.hlsli"

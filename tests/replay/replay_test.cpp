@@ -11,27 +11,28 @@ namespace rhi_test {
 namespace {
 
 using renderer::Translucency;
-using renderer::TranslucencyDemo;
-using renderer::TranslucencyMethod;
 using renderer::TranslucencySettings;
+using renderer::oit::MethodInfo;
+
+const MethodInfo& Method(const char* name) { return *renderer::oit::FindMethod(name); }
 
 class ReplayTest : public GpuTest {
  protected:
-  static TranslucencySettings Small(TranslucencyDemo demo) {
+  static TranslucencySettings Small(const char* scene) {
     TranslucencySettings s;
-    s.demo = demo;
+    s.scene = scene;
     s.width = 128, s.height = 72;
     s.rule = {24, 2, 15, 20};  // ~1k particles, steady after 35 updates
     s.shardCount = 600;
     return s;
   }
-  std::vector<uint8_t> Render(const TranslucencySettings& s, TranslucencyMethod method, int frames,
+  std::vector<uint8_t> Render(const TranslucencySettings& s, const MethodInfo& method, int frames,
                               uint64_t* count = nullptr) {
     std::string error;
     auto t = Translucency::Create(device.Get(), context.Get(), s, &error);
     EXPECT_NE(t, nullptr) << error;
     if (!t) return {};
-    for (int i = 0; i < frames; ++i) t->RenderFrame(method);
+    for (int i = 0; i < frames; ++i) EXPECT_TRUE(t->RenderFrame(method)) << t->error();
     if (count) *count = t->particleCount();
     return t->ReadFrame();
   }
@@ -45,11 +46,11 @@ class ReplayTest : public GpuTest {
 // SPEC's weight carries no depth here: SV_Position.z is 0.98-0.99, so every fragment with
 // a > 0.03 hits the 3e3 clamp and WBOIT is an alpha-weighted average of the layers.
 TEST_F(ReplayTest, WboitIsCloserToSortedThanAlphaBlendingOnSmoke) {
-  const TranslucencySettings s = Small(TranslucencyDemo::Smoke);
+  const TranslucencySettings s = Small("smoke");
   const int frames = 40;
-  auto sorted = Render(s, TranslucencyMethod::Sorted, frames);
-  auto alpha = Render(s, TranslucencyMethod::Alpha, frames);
-  auto wboit = Render(s, TranslucencyMethod::Wboit, frames);
+  auto sorted = Render(s, Method("sorted"), frames);
+  auto alpha = Render(s, Method("alpha"), frames);
+  auto wboit = Render(s, Method("wboit"), frames);
   const double alphaRmse = renderer::Rmse(alpha, sorted), wboitRmse = renderer::Rmse(wboit, sorted);
   RecordProperty("alpha_rmse", std::to_string(alphaRmse));
   RecordProperty("wboit_rmse", std::to_string(wboitRmse));
@@ -63,16 +64,15 @@ TEST_F(ReplayTest, WboitIsCloserToSortedThanAlphaBlendingOnSmoke) {
 // (PIPELINE_STATISTICS) depend on the geometry and the depth test, not on the blend
 // tables or the draw order, so every method shades the same fragments on the same frame.
 TEST_F(ReplayTest, TransparencyFragmentsAreTheSameForEveryMethod) {
-  TranslucencySettings s = Small(TranslucencyDemo::Smoke);
+  TranslucencySettings s = Small("smoke");
   s.timestamps = true;
   std::vector<uint64_t> fragments;
-  for (TranslucencyMethod method : {TranslucencyMethod::Alpha, TranslucencyMethod::Wboit,
-                                    TranslucencyMethod::Colored, TranslucencyMethod::Sorted}) {
+  for (const MethodInfo* method : renderer::oit::Methods()) {
     std::string error;
     auto t = Translucency::Create(device.Get(), context.Get(), s, &error);
     ASSERT_NE(t, nullptr) << error;
-    for (int i = 0; i < 20; ++i) t->RenderFrame(method);
-    fragments.push_back(t->LastTimes().transparencyFragments);
+    for (int i = 0; i < 20; ++i) ASSERT_TRUE(t->RenderFrame(*method)) << t->error();
+    fragments.push_back(t->LastTimes().firstPassFragments);
   }
   EXPECT_GT(fragments[0], uint64_t(s.width) * s.height / 10) << "the smoke covers a good part of the frame";
   for (size_t i = 1; i < fragments.size(); ++i) EXPECT_EQ(fragments[i], fragments[0]) << "method " << i;
@@ -98,15 +98,15 @@ Tint RedRatio(const std::vector<uint8_t>& shards, const std::vector<uint8_t>& em
 }
 
 TEST_F(ReplayTest, ColoredOitTintsTheBackgroundAndWboitDoesNot) {
-  TranslucencySettings s = Small(TranslucencyDemo::Shards);
+  TranslucencySettings s = Small("shards");
   s.shardsAllRed = true;        // every shard transmits (1, .15, .15)
   s.shardSurfaceTint = 0;       // and reflects neutral light
   s.neutralBackground = true;   // over a grey wall
   TranslucencySettings none = s;
   none.shardCount = 0;
-  auto empty = Render(none, TranslucencyMethod::Wboit, 1);
-  auto colored = Render(s, TranslucencyMethod::Colored, 1);
-  auto wboit = Render(s, TranslucencyMethod::Wboit, 1);
+  auto empty = Render(none, Method("wboit"), 1);
+  auto colored = Render(s, Method("colored"), 1);
+  auto wboit = Render(s, Method("wboit"), 1);
   Tint c = RedRatio(colored, empty), w = RedRatio(wboit, empty);
   std::printf("R/G over covered pixels: background %.3f, colored %.3f (%d px), wboit %.3f (%d px)\n", c.without,
               c.withShards, c.pixels, w.withShards, w.pixels);
@@ -117,12 +117,12 @@ TEST_F(ReplayTest, ColoredOitTintsTheBackgroundAndWboitDoesNot) {
   EXPECT_NEAR(w.withShards, w.without, 0.05) << "WBOIT ignores transmission";
 }
 
-// The effect-driven update pass (smoke.fx Update/StreamOut) frame by frame: the first frame
+// The effect-driven update pass (particles.fx Update/StreamOut, renderer::ParticleSystem) frame by frame: the first frame
 // (Draw of the init buffer), the next ones (DrawAuto of the last stream output), the ramp-up
 // and the steady state, for the smoke and the fire demo's particle systems.
 TEST_F(ReplayTest, ParticleCountEveryFrameEqualsTheCpuModel) {
-  for (TranslucencyDemo demo : {TranslucencyDemo::Smoke, TranslucencyDemo::Fire}) {
-    TranslucencySettings s = Small(demo);
+  for (const char* scene : {"smoke", "fire"}) {
+    TranslucencySettings s = Small(scene);
     s.countParticles = true;
     s.rule = {7, 3, 5, 9};  // dies and respawns within the 30 frames
     std::string error;
@@ -130,19 +130,19 @@ TEST_F(ReplayTest, ParticleCountEveryFrameEqualsTheCpuModel) {
     ASSERT_NE(t, nullptr) << error;
     renderer::ParticleCountModel model(s.rule);
     for (int frame = 0; frame < 30; ++frame) {
-      t->RenderFrame(frame % 2 ? TranslucencyMethod::Alpha : TranslucencyMethod::Colored);
-      EXPECT_EQ(t->particleCount(), model.Step()) << renderer::ToString(demo) << " frame " << frame;
+      ASSERT_TRUE(t->RenderFrame(Method(frame % 2 ? "alpha" : "colored"))) << t->error();
+      EXPECT_EQ(t->particleCount(), model.Step()) << scene << " frame " << frame;
     }
     EXPECT_FALSE(t->ReadFrame().empty());
   }
 }
 
 TEST_F(ReplayTest, ParticleCountAfterNFramesEqualsTheCpuModel) {
-  TranslucencySettings s = Small(TranslucencyDemo::Smoke);
+  TranslucencySettings s = Small("smoke");
   s.countParticles = true;
   const int frames = 45;
   uint64_t count = 0;
-  Render(s, TranslucencyMethod::Wboit, frames, &count);
+  Render(s, Method("wboit"), frames, &count);
   renderer::ParticleCountModel model(s.rule);
   uint64_t expected = 0;
   for (int i = 0; i < frames; ++i) expected = model.Step();
@@ -151,14 +151,13 @@ TEST_F(ReplayTest, ParticleCountAfterNFramesEqualsTheCpuModel) {
 }
 
 TEST_F(ReplayTest, TheSameFrameRenderedTwiceIsBitIdentical) {
-  for (TranslucencyDemo demo : {TranslucencyDemo::Smoke, TranslucencyDemo::Shards})
-    for (TranslucencyMethod method : {TranslucencyMethod::Wboit, TranslucencyMethod::Colored,
-                                      TranslucencyMethod::Sorted}) {
-      const TranslucencySettings s = Small(demo);
-      const int frames = demo == TranslucencyDemo::Smoke ? 20 : 2;
-      auto a = Render(s, method, frames), b = Render(s, method, frames);
+  for (const char* scene : {"smoke", "shards"})
+    for (const MethodInfo* method : renderer::oit::Methods()) {
+      const TranslucencySettings s = Small(scene);
+      const int frames = std::string(scene) == "smoke" ? 20 : 2;
+      auto a = Render(s, *method, frames), b = Render(s, *method, frames);
       ASSERT_FALSE(a.empty());
-      EXPECT_TRUE(a == b) << renderer::ToString(demo) << " " << renderer::ToString(method);
+      EXPECT_TRUE(a == b) << scene << " " << method->name;
     }
 }
 

@@ -4,13 +4,14 @@
 // follow the paper: opaque objects -> particle update pass (stream output;
 // Draw(1,0) on the first frame, DrawAuto after) -> 3D transparency pass
 // (DrawAuto of the particles / DrawIndexedInstanced of the shards) -> 2D
-// composing pass. Also: the effect files' state blocks equal Tables 1-4.
+// composing pass. Also: the method includes' state blocks are Tables 1-4.
+#include <cctype>
 #include <string>
 #include <vector>
 
 #include "fx/effect.h"
 #include "gpu_test.h"
-#include "renderer/oit_blend_tables.h"
+#include "renderer/effect_files.h"
 #include "renderer/translucency.h"
 #include "rhi/trace.h"
 
@@ -18,40 +19,41 @@ namespace rhi_test {
 namespace {
 
 using renderer::Translucency;
-using renderer::TranslucencyDemo;
-using renderer::TranslucencyMethod;
 using renderer::TranslucencySettings;
+using renderer::oit::MethodInfo;
 
-constexpr TranslucencyMethod kMethods[4] = {TranslucencyMethod::Alpha, TranslucencyMethod::Wboit,
-                                            TranslucencyMethod::Colored, TranslucencyMethod::Sorted};
+const MethodInfo& Method(const char* name) { return *renderer::oit::FindMethod(name); }
 
-const char* Technique(TranslucencyDemo demo, TranslucencyMethod method) {
-  switch (method) {
-    case TranslucencyMethod::Alpha:
-    case TranslucencyMethod::Sorted: return demo == TranslucencyDemo::Fire ? "Fire" : "Alpha";
-    case TranslucencyMethod::Wboit: return "Wboit";
-    case TranslucencyMethod::Colored: return "Colored";
-  }
-  return "?";
-}
+// Document 000's methods and the technique the paper's passes belong to (fire: OVER is additive).
+struct PaperMethod {
+  const char* method;
+  const char* technique;
+  bool composes;
+};
+constexpr PaperMethod kPaperMethods[] = {{"alpha", "Alpha", false},
+                                         {"sorted", "Alpha", false},
+                                         {"wboit", "Wboit", true},
+                                         {"colored", "Colored", true},
+                                         {"colored-literal", "ColoredLiteral", true}};
 
 // The paper's sequence of passes and draws for one frame.
-std::vector<std::string> PaperOrder(TranslucencyDemo demo, TranslucencyMethod method, uint32_t frame,
+std::vector<std::string> PaperOrder(const std::string& scene, const PaperMethod& method, uint32_t frame,
                                     uint32_t emitters, uint32_t shards, uint64_t liveParticles) {
-  const std::string t = Technique(demo, method);
+  const bool fireOver = scene == "fire" && std::string(method.technique) == "Alpha";
+  const std::string t = fireOver ? "Fire" : method.technique;
   std::vector<std::string> order = {"SetMarker(Opaque/Scene)", "Draw(780, 0)"};  // the opaque scene: 780 vertices
-  if (demo != TranslucencyDemo::Shards) {
+  if (scene != "shards") {
     order.push_back("SetMarker(Update/StreamOut)");
     order.push_back(frame == 0 ? "Draw(" + std::to_string(emitters) + ", 0)" : "DrawAuto()");
     order.push_back("SetMarker(" + t + "/Transparency)");
     // The sorted reference draws the CPU-sorted copy, whose count it read back.
-    order.push_back(method == TranslucencyMethod::Sorted ? "Draw(" + std::to_string(liveParticles) + ", 0)"
-                                                         : "DrawAuto()");
+    order.push_back(std::string(method.method) == "sorted" ? "Draw(" + std::to_string(liveParticles) + ", 0)"
+                                                           : "DrawAuto()");
   } else {
     order.push_back("SetMarker(" + t + "/Transparency)");
     order.push_back("DrawIndexedInstanced(36, " + std::to_string(shards) + ", 0, 0, 0)");  // 12 triangles a shard
   }
-  if (method == TranslucencyMethod::Wboit || method == TranslucencyMethod::Colored) {
+  if (method.composes) {
     order.push_back("SetMarker(" + t + "/Compose)");
     order.push_back("Draw(3, 0)");
   }
@@ -61,10 +63,10 @@ std::vector<std::string> PaperOrder(TranslucencyDemo demo, TranslucencyMethod me
 class TraceTest : public GpuTest {};
 
 TEST_F(TraceTest, PassesAndDrawsFollowThePapersFrameOrder) {
-  for (TranslucencyDemo demo : {TranslucencyDemo::Smoke, TranslucencyDemo::Fire, TranslucencyDemo::Shards})
-    for (TranslucencyMethod method : kMethods) {
+  for (const char* scene : {"smoke", "fire", "shards"})
+    for (const PaperMethod& method : kPaperMethods) {
       TranslucencySettings s;
-      s.demo = demo;
+      s.scene = scene;
       s.width = 64, s.height = 36;
       s.rule = {1, 4, 10, 5};  // the paper's init buffer: one emitter, so the first update is Draw(1, 0)
       s.shardCount = 50;
@@ -76,11 +78,11 @@ TEST_F(TraceTest, PassesAndDrawsFollowThePapersFrameOrder) {
       ASSERT_NE(t, nullptr) << error;
       for (uint32_t frame = 0; frame < 2; ++frame) {
         trace.Clear();
-        t->RenderFrame(method);
+        ASSERT_TRUE(t->RenderFrame(Method(method.method))) << t->error();
         const auto got = trace.Filter({"SetMarker", "Draw", "DrawAuto", "DrawIndexedInstanced", "DrawInstanced",
                                        "DrawIndexed"});
-        const auto want = PaperOrder(demo, method, frame, s.rule.emitters, s.shardCount, t->particleCount());
-        EXPECT_EQ(got, want) << renderer::ToString(demo) << " " << renderer::ToString(method) << " frame " << frame
+        const auto want = PaperOrder(scene, method, frame, s.rule.emitters, s.shardCount, t->particleCount());
+        EXPECT_EQ(got, want) << scene << " " << method.method << " frame " << frame
                              << "\nfull trace:\n"
                              << trace.ToString();
       }
@@ -98,9 +100,9 @@ TEST_F(TraceTest, StreamOutTargetsAreSetAroundTheUpdateDrawOnly) {
   std::string error;
   auto t = Translucency::Create(device.Get(), traced.Get(), s, &error);
   ASSERT_NE(t, nullptr) << error;
-  t->RenderFrame(TranslucencyMethod::Wboit);
+  ASSERT_TRUE(t->RenderFrame(Method("wboit"))) << t->error();
   trace.Clear();
-  t->RenderFrame(TranslucencyMethod::Wboit);
+  ASSERT_TRUE(t->RenderFrame(Method("wboit"))) << t->error();
   const auto got = trace.Filter({"SOSetTargets", "SetMarker", "DrawAuto"});
   const std::vector<std::string> want = {"SetMarker(Opaque/Scene)", "SOSetTargets(1, obj/0)",
                                          "SetMarker(Update/StreamOut)", "DrawAuto()", "SOSetTargets(0)",
@@ -114,13 +116,13 @@ TEST_F(TraceTest, ADisabledTraceForwardsWithoutRecording) {
   ComPtr<rhi::DeviceContext> traced;
   ASSERT_EQ(rhi::CreateTracingContext(context.Get(), &trace, traced.GetAddressOf()), rhi::S_OK);
   TranslucencySettings s;
-  s.demo = TranslucencyDemo::Shards;
+  s.scene = "shards";
   s.width = 32, s.height = 18;
   s.shardCount = 10;
   std::string error;
   auto t = Translucency::Create(device.Get(), traced.Get(), s, &error);
   ASSERT_NE(t, nullptr) << error;
-  t->RenderFrame(TranslucencyMethod::Colored);
+  ASSERT_TRUE(t->RenderFrame(Method("colored"))) << t->error();
   EXPECT_TRUE(trace.calls.empty());
   EXPECT_FALSE(t->ReadFrame().empty());
   EXPECT_EQ(rhi::CreateTracingContext(nullptr, &trace, traced.ReleaseAndGetAddressOf()), rhi::E_INVALIDARG);
@@ -134,14 +136,14 @@ TEST_F(TraceTest, AnnotationsAreForwardedAndRecorded) {
   ComPtr<rhi::DeviceContext> traced;
   ASSERT_EQ(rhi::CreateTracingContext(context.Get(), &trace, traced.GetAddressOf()), rhi::S_OK);
   TranslucencySettings s;
-  s.demo = TranslucencyDemo::Shards;
+  s.scene = "shards";
   s.width = 32, s.height = 18;
   s.shardCount = 10;
   std::string error;
   auto t = Translucency::Create(device.Get(), traced.Get(), s, &error);
   ASSERT_NE(t, nullptr) << error;
   traced->BeginEvent("frame 0");
-  t->RenderFrame(TranslucencyMethod::Wboit);
+  ASSERT_TRUE(t->RenderFrame(Method("wboit"))) << t->error();
   traced->SetMarker("after the frame");
   traced->EndEvent();
   const std::vector<std::string> want = {"BeginEvent(frame 0)",         "SetMarker(Opaque/Scene)",
@@ -151,64 +153,93 @@ TEST_F(TraceTest, AnnotationsAreForwardedAndRecorded) {
 }
 
 // ---------------------------------------------------------------------------
-// The state blocks of shaders_hlsl/translucency_states.fxh against the tables.
+// The state blocks of the method includes (shaders_hlsl/oit/*.fxh, where the
+// tables live) against SPEC.md's tables, row by row: each row restates a table
+// of the document, the oracle, and is checked on the effect the renderer loads.
 
-void ExpectSameBlend(const rhi::BLEND_DESC& fx, const rhi::BLEND_DESC& table, const char* name) {
-  EXPECT_EQ(fx.AlphaToCoverageEnable, table.AlphaToCoverageEnable) << name;
-  // FX11 starts every BlendState with IndependentBlendEnable TRUE; the tables set it
-  // only when targets differ. With every other target disabled both blend alike.
-  for (int i = 0; i < 8; ++i) {
-    const auto &a = fx.RenderTarget[i], &b = table.RenderTarget[i];
-    SCOPED_TRACE(std::string(name) + " RT" + std::to_string(i));
-    EXPECT_EQ(a.BlendEnable, b.BlendEnable);
-    if (!b.BlendEnable) continue;
-    EXPECT_EQ(a.SrcBlend, b.SrcBlend);
-    EXPECT_EQ(a.DestBlend, b.DestBlend);
-    EXPECT_EQ(a.BlendOp, b.BlendOp);
-    EXPECT_EQ(a.SrcBlendAlpha, b.SrcBlendAlpha);
-    EXPECT_EQ(a.DestBlendAlpha, b.DestBlendAlpha);
-    EXPECT_EQ(a.BlendOpAlpha, b.BlendOpAlpha);
-    EXPECT_EQ(a.RenderTargetWriteMask, b.RenderTargetWriteMask);
-  }
+struct SpecBlendRow {
+  const char* table;   // SPEC.md's name for it
+  const char* method;  // the method whose effect holds the block
+  const char* object;  // null: the method's own effect (oit/method.fx)
+  const char* block;
+  int target;
+  rhi::BLEND src, dest, srcAlpha, destAlpha;  // BlendOp and BlendOpAlpha are ADD in every table
+};
+
+using enum rhi::BLEND;
+const SpecBlendRow kSpecTables[] = {
+    {"OVER", "alpha", nullptr, "Over", 0, BLEND_SRC_ALPHA, BLEND_INV_SRC_ALPHA, BLEND_ONE, BLEND_INV_SRC_ALPHA},
+    {"fire: additive", "alpha", "smoke.fx", "Additive", 0, BLEND_SRC_ALPHA, BLEND_ONE, BLEND_ZERO, BLEND_ONE},
+    {"Table 1 accum", "wboit", nullptr, "WboitAccumulate", 0, BLEND_ONE, BLEND_ONE, BLEND_ONE, BLEND_ONE},
+    // D3D11 forbids colour factors for alpha; revealage is R8, so its alpha factors never matter.
+    {"Table 1 revealage", "wboit", nullptr, "WboitAccumulate", 1, BLEND_ZERO, BLEND_INV_SRC_COLOR, BLEND_ZERO,
+     BLEND_INV_SRC_ALPHA},
+    {"Table 2", "wboit", nullptr, "WboitCompose", 0, BLEND_SRC_ALPHA, BLEND_INV_SRC_ALPHA, BLEND_SRC_ALPHA,
+     BLEND_INV_SRC_ALPHA},
+    {"Table 3 accum", "colored", nullptr, "ColoredAccumulate", 0, BLEND_ONE, BLEND_ONE, BLEND_ONE, BLEND_ONE},
+    {"Table 3 revealage", "colored", nullptr, "ColoredAccumulate", 1, BLEND_ZERO, BLEND_INV_SRC_COLOR, BLEND_ZERO,
+     BLEND_INV_SRC_ALPHA},
+    // The table gives no alpha rule for the frame: kept (ZERO/ONE).
+    {"Table 3 frame", "colored", nullptr, "ColoredAccumulate", 2, BLEND_ZERO, BLEND_INV_SRC_COLOR, BLEND_ZERO,
+     BLEND_ONE},
+    {"Table 4 corrected", "colored", nullptr, "ColoredCompose", 0, BLEND_SRC_ALPHA, BLEND_ONE, BLEND_ZERO, BLEND_ONE},
+    {"Table 4 as printed", "colored-literal", nullptr, "ColoredComposeLiteral", 0, BLEND_INV_SRC_ALPHA, BLEND_ONE,
+     BLEND_ZERO, BLEND_ONE},
+};
+
+void PrintTo(const SpecBlendRow& row, std::ostream* os) { *os << row.table << " (" << row.block << ")"; }
+
+class SpecTableTest : public GpuTest, public ::testing::WithParamInterface<SpecBlendRow> {};
+
+TEST_P(SpecTableTest, TheEffectsStateBlockIsTheTable) {
+  const SpecBlendRow& row = GetParam();
+  std::string error;
+  renderer::EffectDefines defines;
+  if (row.object) defines.emplace_back("FIRE", "1");
+  ComPtr<fx::Effect> e = renderer::oit::LoadMethodEffect(device.Get(), Method(row.method), row.object, defines, &error);
+  ASSERT_TRUE(e) << error;
+  rhi::BLEND_DESC d;
+  ASSERT_EQ(e->GetVariableByName(row.block)->AsBlend()->GetBackingStore(0, &d), rhi::S_OK) << row.block;
+  EXPECT_FALSE(d.AlphaToCoverageEnable);
+  const rhi::RENDER_TARGET_BLEND_DESC& rt = d.RenderTarget[row.target];
+  EXPECT_TRUE(rt.BlendEnable);
+  EXPECT_EQ(rt.SrcBlend, row.src);
+  EXPECT_EQ(rt.DestBlend, row.dest);
+  EXPECT_EQ(rt.BlendOp, rhi::BLEND_OP_ADD);
+  EXPECT_EQ(rt.SrcBlendAlpha, row.srcAlpha);
+  EXPECT_EQ(rt.DestBlendAlpha, row.destAlpha);
+  EXPECT_EQ(rt.BlendOpAlpha, rhi::BLEND_OP_ADD);
+  EXPECT_EQ(rt.RenderTargetWriteMask, rhi::COLOR_WRITE_ENABLE_ALL);
+  // FX11 starts every BlendState with IndependentBlendEnable TRUE: targets no table names do not blend.
+  EXPECT_TRUE(d.IndependentBlendEnable);
+  int enabled = 0;
+  for (const auto& target : d.RenderTarget) enabled += target.BlendEnable ? 1 : 0;
+  int rowsOfBlock = 0;
+  for (const SpecBlendRow& other : kSpecTables)
+    rowsOfBlock += std::string(other.block) == row.block && std::string(other.method) == row.method;
+  EXPECT_EQ(enabled, rowsOfBlock) << "targets blending in " << row.block;
 }
 
-TEST_F(TraceTest, EffectStateBlocksAreTheSpecTables) {
-  for (const char* file : {"smoke.fx", "shards.fx"}) {
-    fx::EFFECT_OPTIONS options;
-    options.IncludeDirs = {PROJECT_SOURCE_ROOT "/shaders_hlsl"};
-    std::string errors;
-    options.Errors = &errors;
-    ComPtr<fx::Effect> e;
-    ASSERT_EQ(fx::CreateEffectFromFile((std::string(PROJECT_SOURCE_ROOT "/shaders_hlsl/") + file).c_str(), options,
-                                       device.Get(), e.GetAddressOf()),
-              rhi::S_OK)
-        << errors;
-    auto blend = [&](const char* name) {
-      rhi::BLEND_DESC d;
-      EXPECT_EQ(e->GetVariableByName(name)->AsBlend()->GetBackingStore(0, &d), rhi::S_OK) << name;
-      return d;
-    };
-    ExpectSameBlend(blend("WboitAccumulate"), oit::WboitAccumulateBlend(), "Table 1");
-    ExpectSameBlend(blend("WboitCompose"), oit::WboitComposeBlend(), "Table 2");
-    ExpectSameBlend(blend("ColoredAccumulate"), oit::ColoredAccumulateBlend(), "Table 3");
-    ExpectSameBlend(blend("ColoredCompose"), oit::ColoredComposeBlendCorrected(), "Table 4 corrected");
-    ExpectSameBlend(blend("ColoredComposeLiteral"), oit::ColoredComposeBlendLiteral(), "Table 4 as printed");
-    rhi::BLEND_DESC over;
-    over.RenderTarget[0] =
-        oit::TargetBlend(rhi::BLEND_SRC_ALPHA, rhi::BLEND_INV_SRC_ALPHA, rhi::BLEND_ONE, rhi::BLEND_INV_SRC_ALPHA);
-    ExpectSameBlend(blend("Over"), over, "OVER");
-    rhi::BLEND_DESC additive;
-    additive.RenderTarget[0] = oit::TargetBlend(rhi::BLEND_SRC_ALPHA, rhi::BLEND_ONE, rhi::BLEND_ZERO, rhi::BLEND_ONE);
-    ExpectSameBlend(blend("Additive"), additive, "additive (fire)");
-    // The 3D transparency pass tests depth but does not write it; composing uses none.
-    rhi::DEPTH_STENCIL_DESC d;
-    ASSERT_EQ(e->GetVariableByName("DepthTestNoWrite")->AsDepthStencil()->GetBackingStore(0, &d), rhi::S_OK);
-    EXPECT_EQ(d.DepthEnable, rhi::TRUE);
-    EXPECT_EQ(d.DepthWriteMask, rhi::DEPTH_WRITE_MASK_ZERO);
-    EXPECT_EQ(d.DepthFunc, rhi::COMPARISON_LESS);
-    ASSERT_EQ(e->GetVariableByName("NoDepth")->AsDepthStencil()->GetBackingStore(0, &d), rhi::S_OK);
-    EXPECT_EQ(d.DepthEnable, rhi::FALSE);
-  }
+INSTANTIATE_TEST_SUITE_P(Document000, SpecTableTest, ::testing::ValuesIn(kSpecTables),
+                         [](const ::testing::TestParamInfo<SpecBlendRow>& info) {
+                           std::string name = info.param.table;
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
+
+// The 3D transparency pass tests depth but does not write it; composing uses none.
+TEST_F(TraceTest, TranslucentPassesTestDepthWithoutWritingIt) {
+  std::string error;
+  ComPtr<fx::Effect> e = renderer::oit::LoadMethodEffect(device.Get(), Method("wboit"), nullptr, {}, &error);
+  ASSERT_TRUE(e) << error;
+  rhi::DEPTH_STENCIL_DESC d;
+  ASSERT_EQ(e->GetVariableByName("DepthTestNoWrite")->AsDepthStencil()->GetBackingStore(0, &d), rhi::S_OK);
+  EXPECT_EQ(d.DepthEnable, rhi::TRUE);
+  EXPECT_EQ(d.DepthWriteMask, rhi::DEPTH_WRITE_MASK_ZERO);
+  EXPECT_EQ(d.DepthFunc, rhi::COMPARISON_LESS);
+  ASSERT_EQ(e->GetVariableByName("NoDepth")->AsDepthStencil()->GetBackingStore(0, &d), rhi::S_OK);
+  EXPECT_EQ(d.DepthEnable, rhi::FALSE);
 }
 
 }  // namespace

@@ -39,7 +39,8 @@ class ParticleSystem {
                                                 std::string* error);
 
   // One update pass: the current buffer in, the other out through stream output.
-  void Update(rhi::DeviceContext* context);
+  // countLive: an SO_STATISTICS query around it, read back (a wait) into liveCount().
+  void Update(rhi::DeviceContext* context, bool countLive = false);
   // Billboards of the live particles with DrawAuto, through the effect's Draw pass (OVER
   // blending, depth tested and not written, no culling) into the caller's targets.
   void Draw(rhi::DeviceContext* context, const Camera& camera);
@@ -47,6 +48,8 @@ class ParticleSystem {
   // The buffer the last update wrote (what Draw draws).
   rhi::Buffer* current() const { return buffers_[current_].Get(); }
   uint32_t updates() const { return updates_; }
+  // Particles (emitters included) the last counting Update left alive.
+  uint64_t liveCount() const { return liveCount_; }
   uint32_t capacity() const { return capacity_; }
   const ParticleSettings& settings() const { return settings_; }
 
@@ -59,6 +62,8 @@ class ParticleSystem {
   uint32_t capacity_ = 0;
   uint32_t updates_ = 0;
   uint32_t current_ = 0;
+  uint64_t liveCount_ = 0;
+  rhi::ComPtr<rhi::Query> streamOutStatistics_;
   rhi::ComPtr<rhi::Buffer> emitters_;
   std::array<rhi::ComPtr<rhi::Buffer>, 2> buffers_;
   rhi::ComPtr<rhi::InputLayout> layout_;

@@ -1,25 +1,22 @@
-// The translucency demos of document 000 (SPEC.md), replayed deterministically.
+// The translucency replays of the source documents, deterministic: a scene
+// (renderer/scenes.h) rendered with a transparency method (renderer/oit/method.h).
 //
-// Frame order of the paper, one function per pass, each driven only through
-// effect techniques and passes (shaders_hlsl/*.fx: shaders and the blend,
-// depth-stencil and rasterizer state blocks live there; the C++ sets effect
-// variables, binds targets and buffers, applies passes and draws):
-//   OpaquePass         scene.fx Opaque/Scene: stripes, floor and cubes into frame + depth
-//   ParticleUpdatePass smoke.fx Update/StreamOut: stream output into the other
-//                      ping-pong buffer, Draw(emitters, 0) on the first frame
-//                      (the paper's Draw(1,0) with one emitter), DrawAuto after
-//   TransparencyPass   <method>/Transparency of smoke.fx (DrawAuto of the particles)
-//                      and/or shards.fx (DrawIndexedInstanced of the shards)
-//   ComposePass        <method>/Compose (WBOIT: Table 2; colored: Table 4)
-// Methods: Alpha (plain OVER in buffer order; the fire demo: additive), Wboit
-// (Tables 1 + 2), Colored (Tables 3 + corrected 4, or the literal Table 4 on
-// request), Sorted (the reference: OVER back to front, sorted on the CPU:
-// particles read back, shard instances reordered; fire: additive, sorted).
+// Frame order of document 000, each pass driven only through effect techniques
+// and passes (shaders_hlsl/*.fx: shaders and the blend, depth-stencil and
+// rasterizer state blocks live there; the C++ sets effect variables, binds
+// targets and buffers, applies passes and draws):
+//   the opaque pass   scene.fx Opaque/Scene: stripes, floor and cubes into frame + depth
+//   object updates    particles.fx Update/StreamOut (ParticleSystem): stream output into
+//                     the other ping-pong buffer, Draw(emitters, 0) on the first frame
+//                     (the paper's Draw(1,0) with one emitter), DrawAuto after
+//   the method        its passes over the objects: alpha and sorted one (OVER), WBOIT and
+//                     colored two (<technique>/Transparency, then <technique>/Compose)
 // Everything is seeded and the time step is fixed: frame N is a pure function of
 // the settings and N.
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -27,45 +24,39 @@
 
 #include <glm/glm.hpp>
 
+#include "renderer/oit/method.h"
 #include "renderer/particle_system.h"
+#include "renderer/scenes.h"
 #include "rhi/rhi.h"
 
 namespace renderer {
 
-enum class TranslucencyDemo { Smoke, Shards, Fire };
-enum class TranslucencyMethod { Alpha, Wboit, Colored, Sorted };
-
-const char* ToString(TranslucencyDemo demo);
-const char* ToString(TranslucencyMethod method);
-bool ParseDemo(const std::string& text, TranslucencyDemo* demo);
-bool ParseMethod(const std::string& text, TranslucencyMethod* method);
-
 struct TranslucencySettings {
-  TranslucencyDemo demo = TranslucencyDemo::Smoke;
+  std::string scene = "smoke";  // a name of Scenes()
   uint32_t width = 640, height = 360;
   uint32_t seed = 1234;
-  // Smoke.
+  // Particles (smoke, fire).
   ParticleRule rule{48, 3, 40, 60};
   float particleSize = 0.3f;
   float secondsPerUpdate = 1.0f / 40.0f;
   // Shards.
   uint32_t shardCount = 3000;
-  uint32_t extraShards = 0;       // smoke / fire: also draw this many shards (the heavy bench scene)
+  uint32_t extraShards = 0;       // the particle scenes: also draw this many shards (the heavy bench scene)
   float shardSurfaceTint = 0.5f;  // 0: neutral surface colour (tint only in transmission)
   bool shardsAllRed = false;      // every shard transmits (1, 0.15, 0.15)
   // Background.
   bool neutralBackground = false;  // a plain grey wall instead of coloured stripes
-  bool literalTable4 = false;      // colored: compose with Table 4 as printed
-  bool timestamps = false;         // per-pass TIMESTAMP queries and the 3D pass's statistics (see LastTimes)
+  bool timestamps = false;         // per-pass TIMESTAMP queries and the first method pass's statistics (LastTimes)
   bool countParticles = false;     // SO_STATISTICS around every update (see particleCount)
 };
 
 struct PassTimes {
   bool valid = false;  // false when the disjoint query said disjoint
-  double opaqueMs = 0, updateMs = 0, transparencyMs = 0, composeMs = 0, totalMs = 0;
-  // Pixel-shader invocations of the 3D transparency pass (PIPELINE_STATISTICS): the
+  double opaqueMs = 0, updateMs = 0, totalMs = 0;
+  std::vector<double> methodPassMs;  // one per pass of the method, as its PassNames()
+  // Pixel-shader invocations of the method's first pass (PIPELINE_STATISTICS): the
   // fragments it shades and blends, what a fill-bound pass's time follows.
-  uint64_t transparencyFragments = 0;
+  uint64_t firstPassFragments = 0;
 };
 
 class Translucency {
@@ -74,13 +65,11 @@ class Translucency {
                                               const TranslucencySettings& settings, std::string* error);
   ~Translucency();
 
-  // Renders the next frame (frame index frame(), then advances it).
-  void RenderFrame(TranslucencyMethod method);
-  // The passes, in the paper's order (RenderFrame calls them).
-  void OpaquePass();
-  void ParticleUpdatePass();
-  void TransparencyPass(TranslucencyMethod method);
-  void ComposePass(TranslucencyMethod method);
+  // Renders the next frame (frame index frame(), then advances it) with `method`.
+  // False when the method could not be made for this scene (error() says why);
+  // the frame index does not advance then.
+  bool RenderFrame(const oit::MethodInfo& method);
+  const std::string& error() const { return error_; }
 
   // The frame as tightly packed RGBA8 rows.
   std::vector<uint8_t> ReadFrame();
@@ -89,12 +78,15 @@ class Translucency {
   rhi::Texture2D* FrameTexture() const;
   // Waits for and returns the pass times of the last frame (settings.timestamps).
   PassTimes LastTimes();
+  // The method made for this replay (after a RenderFrame with it), for its memory and pass names.
+  const oit::Method* MethodInstance(const oit::MethodInfo& method) const;
 
   uint32_t frame() const { return frame_; }
   // Live particles (emitters included) after the last update, from SO_STATISTICS;
-  // valid with settings.countParticles or the sorted method.
-  uint64_t particleCount() const { return particleCount_; }
+  // valid with settings.countParticles or a back-to-front method.
+  uint64_t particleCount() const;
   const TranslucencySettings& settings() const { return settings_; }
+  const SceneInfo& scene() const { return *scene_; }
 
   // The fixed camera of frame n.
   Camera CameraForFrame(uint32_t n) const;
@@ -104,18 +96,19 @@ class Translucency {
 
  private:
   struct Impl;
+  struct MethodState;
+  class FrameGeometry;
   Translucency() = default;
-  bool Initialize(rhi::Device* device, rhi::DeviceContext* context, const TranslucencySettings& settings,
-                  std::string* error);
-  void DrawSmoke(TranslucencyMethod method);
-  void DrawShards(TranslucencyMethod method);
-  void Timestamp(int index);
+  bool Initialize(rhi::Device* device, rhi::DeviceContext* context, const TranslucencySettings& settings);
+  MethodState* Prepare(const oit::MethodInfo& method);
+  void OpaquePass();
 
   TranslucencySettings settings_;
+  const SceneInfo* scene_ = nullptr;
   uint32_t frame_ = 0;
-  uint64_t particleCount_ = 0;
   Camera camera_;
   std::optional<Camera> cameraOverride_;
+  std::string error_;
   std::unique_ptr<Impl> impl_;
 };
 

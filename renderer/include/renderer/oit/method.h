@@ -1,0 +1,115 @@
+// A transparency method: the passes that draw a scene's translucent geometry
+// over its opaque frame. Every method of the source documents is one Method,
+// listed once in the registry (Methods()), which the apps and the tests iterate.
+//
+// A method's shaders and blend tables live in its effect include,
+// shaders_hlsl/oit/<name>.fxh: each translucent object's effect is the object's
+// shader file built with OIT_METHOD defined to that include (one object shader
+// times one method include, never a hand-written technique per pair), and the
+// passes that draw no object (composing) come from shaders_hlsl/oit/method.fx
+// built the same way. docs/ARCHITECTURE.md, "Adding a transparency method".
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rhi/rhi.h"
+
+namespace renderer::oit {
+
+// What a method needs of the device beyond Direct3D 11.0's guarantees.
+enum Need : uint32_t {
+  kNeedsPixelShaderUavs = 1u << 0,  // UAVs written by pixel shaders (fragmentStoresAndAtomics)
+  kNeedsMsaa = 1u << 1,             // multisampled targets read per sample
+  kNeedsFloat32Blend = 1u << 2,     // blending into R32_FLOAT-class targets (optional in Vulkan)
+  kNeedsCompute = 1u << 3,          // compute-shader passes
+};
+// "pixel-shader UAVs, MSAA", or "nothing beyond D3D11.0" for 0.
+std::string DescribeNeeds(uint32_t needs);
+
+// The size of the frame a method renders into.
+struct FrameDesc {
+  uint32_t width = 0, height = 0;
+  uint32_t sampleCount = 1;
+};
+
+// The frame, with the opaque objects drawn: the method leaves its composite in `frame`.
+struct FrameTargets {
+  rhi::RenderTargetView* frame = nullptr;  // R8G8B8A8_UNORM
+  rhi::DepthStencilView* depth = nullptr;  // D32_FLOAT opaque depth: tested, never written by translucency
+};
+
+enum class DrawOrder {
+  AsSubmitted,  // the order the objects keep their primitives in (particles: buffer order)
+  BackToFront,  // sorted on the CPU by view depth (the sorted reference)
+};
+
+// The scene's translucent objects, as a method's passes see them: Draw draws
+// every object with the pass `pass` of the method's technique in each object's effect.
+class Geometry {
+ public:
+  virtual void Draw(rhi::DeviceContext* context, const char* pass, DrawOrder order) = 0;
+
+ protected:
+  ~Geometry() = default;
+};
+
+// The frame driver's timing hook: a method calls BeginPass(i) as its i-th pass
+// (PassNames()[i]) starts.
+class PassMarks {
+ public:
+  virtual void BeginPass(size_t index) = 0;
+
+ protected:
+  ~PassMarks() = default;
+};
+
+struct RenderArgs {
+  rhi::DeviceContext* context = nullptr;
+  FrameTargets targets;
+  Geometry* geometry = nullptr;
+  PassMarks* marks = nullptr;
+};
+
+class Method {
+ public:
+  virtual ~Method() = default;
+  // Renders every pass of the method over the frame.
+  virtual void Render(const RenderArgs& args) = 0;
+  // The bytes of the targets and buffers the method created for its frame.
+  virtual uint64_t MemoryBytes() const = 0;
+  // Its passes in the order Render runs them (the names of their effect passes).
+  virtual const std::vector<std::string>& PassNames() const = 0;
+};
+
+struct MethodInfo;
+
+// What a method is created with.
+struct MethodSetup {
+  rhi::Device* device = nullptr;
+  FrameDesc frame;
+};
+
+using MethodFactory = std::unique_ptr<Method> (*)(const MethodInfo& info, const MethodSetup& setup,
+                                                  std::string* error);
+
+struct MethodInfo {
+  const char* name;      // command lines and file names: "wboit"
+  const char* include;   // its effect include, relative to shaders_hlsl/: "oit/wboit.fxh"
+  uint32_t needs;        // Need bits
+  DrawOrder order;       // the order its passes draw the geometry in
+  const char* summary;   // one line for listings
+  MethodFactory create;
+};
+
+// The registry: every method, in the order listings show them.
+const std::vector<const MethodInfo*>& Methods();
+// nullptr when no method has that name.
+const MethodInfo* FindMethod(std::string_view name);
+// "alpha, sorted, ..." for usage messages.
+std::string MethodNames();
+
+}  // namespace renderer::oit

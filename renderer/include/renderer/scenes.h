@@ -1,0 +1,44 @@
+// The scenes of the replays: the opaque backdrop (scene.fx: stripes, floor,
+// cubes), a list of translucent objects and a camera rig. The registry
+// (Scenes()) is the one list the apps and the tests iterate.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "renderer/translucent_object.h"
+#include "rhi/rhi.h"
+
+namespace renderer {
+
+struct TranslucencySettings;
+
+struct SceneInfo {
+  const char* name;     // command lines and file names: "smoke"
+  const char* summary;  // one line for listings
+  // The scripted camera orbits `cameraTarget` at `cameraRadius`, slightly above it.
+  glm::vec3 cameraTarget;
+  float cameraRadius;
+  // Frames a replay renders unless told otherwise: enough for its particles to
+  // reach their steady state, 1 for a scene that does not change.
+  int defaultFrames;
+  // Adds the scene's translucent objects (settings.extraShards adds shards to any scene).
+  bool (*build)(rhi::Device* device, const TranslucencySettings& settings,
+                std::vector<std::unique_ptr<TranslucentObject>>* objects, std::string* error);
+};
+
+// The registry, in the order listings show them.
+const std::vector<const SceneInfo*>& Scenes();
+// nullptr when no scene has that name.
+const SceneInfo* FindScene(std::string_view name);
+// "smoke, fire, shards" for usage messages.
+std::string SceneNames();
+
+// The direction towards the scenes' one light.
+glm::vec3 SceneLightDirection();
+
+}  // namespace renderer

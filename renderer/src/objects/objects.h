@@ -1,0 +1,35 @@
+// The translucent objects of the demos, created by the scenes (scenes.cpp).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "renderer/particle_system.h"
+#include "renderer/translucent_object.h"
+
+namespace renderer {
+
+// What every object is made with.
+struct ObjectSetup {
+  rhi::Device* device = nullptr;
+  uint32_t seed = 0;
+  glm::vec3 lightDir{0, 1, 0};  // towards the light
+};
+
+// Billboards of a ParticleSystem's particles, lit through a normal-mapped puff
+// (shaders_hlsl/smoke.fx); fire: the flame ramp, and additive blending for OVER.
+std::unique_ptr<TranslucentObject> CreateSmoke(const ObjectSetup& setup, const ParticleSettings& particles, bool fire,
+                                               std::string* error);
+
+// `count` instanced glass shards (shaders_hlsl/shards.fx) in a box over the floor.
+struct ShardSettings {
+  uint32_t count = 0;
+  float surfaceTint = 0.5f;  // 0: neutral surface colour (tint only in transmission)
+  bool allRed = false;       // every shard transmits (1, 0.15, 0.15)
+};
+std::unique_ptr<TranslucentObject> CreateShards(const ObjectSetup& setup, const ShardSettings& shards,
+                                                std::string* error);
+
+}  // namespace renderer

@@ -1,0 +1,205 @@
+// The instanced glass shards of document 000: one irregular shard mesh and
+// per-instance world matrices and tints, drawn with one DrawIndexedInstanced
+// through shaders_hlsl/shards.fx, built once per transparency method.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "fx/effect.h"
+#include "objects/objects.h"
+#include "random.h"
+#include "renderer/effect_files.h"
+
+namespace renderer {
+namespace {
+
+using namespace rhi;
+
+struct ShardVertex {
+  glm::vec3 position, normal;
+};
+
+struct ShardInstance {
+  glm::vec4 world[4];  // columns
+  glm::vec4 tint;      // rgb transmission, a alpha
+};
+static_assert(sizeof(ShardInstance) == 80);
+
+// An irregular shard: a jittered hexagon pushed into a thin double pyramid, flat-shaded.
+std::vector<ShardVertex> ShardMesh(uint32_t seed) {
+  constexpr int kSides = 6;
+  glm::vec3 rim[kSides];
+  for (int i = 0; i < kSides; ++i) {
+    float angle = 6.2831853f * (i + 0.6f * (Random(seed, 10, i) - 0.5f)) / kSides;
+    float radius = 0.5f + 0.5f * Random(seed, 11, i);
+    rim[i] = {radius * std::cos(angle), radius * std::sin(angle) * 1.4f, 0.05f * (Random(seed, 12, i) - 0.5f)};
+  }
+  const glm::vec3 front{0.1f, 0.05f, 0.12f}, back{-0.05f, 0.1f, -0.08f};
+  std::vector<ShardVertex> v;
+  for (int i = 0; i < kSides; ++i) {
+    glm::vec3 a = rim[i], b = rim[(i + 1) % kSides];
+    for (glm::vec3 apex : {front, back}) {
+      glm::vec3 n = glm::normalize(glm::cross(b - a, apex - a));
+      v.push_back({a, n});
+      v.push_back({b, n});
+      v.push_back({apex, n});
+    }
+  }
+  return v;
+}
+
+std::vector<ShardInstance> ShardInstances(uint32_t seed, const ShardSettings& s) {
+  const glm::vec3 tints[6] = {{1.0f, 0.2f, 0.15f}, {0.2f, 0.95f, 0.3f}, {0.2f, 0.4f, 1.0f},
+                              {1.0f, 0.75f, 0.15f}, {0.2f, 0.9f, 0.95f}, {0.95f, 0.25f, 0.9f}};
+  std::vector<ShardInstance> out(s.count);
+  for (uint32_t i = 0; i < s.count; ++i) {
+    auto r = [&](uint32_t stream) { return Random(seed, 100 + stream, i); };
+    glm::vec3 position{-3.5f + 7.0f * r(0), 0.2f + 3.6f * r(1), -2.5f + 5.0f * r(2)};
+    glm::vec3 axis = glm::normalize(glm::vec3(r(3) - 0.5f, r(4) - 0.5f, r(5) - 0.5f) + glm::vec3(1e-3f));
+    float angle = 6.2831853f * r(6);
+    float scale = 0.12f + 0.18f * r(7);
+    glm::mat4 world = glm::translate(glm::mat4(1.0f), position) * glm::rotate(glm::mat4(1.0f), angle, axis) *
+                      glm::scale(glm::mat4(1.0f), glm::vec3(scale));
+    for (int c = 0; c < 4; ++c) out[i].world[c] = world[c];
+    glm::vec3 tint = s.allRed ? glm::vec3(1.0f, 0.15f, 0.15f) : tints[std::min(5u, uint32_t(r(8) * 6))];
+    out[i].tint = glm::vec4(tint, 0.2f + 0.2f * r(9));
+  }
+  return out;
+}
+
+// shards.fx built for one method, with the variables a frame sets.
+struct ShardEffect {
+  ComPtr<fx::Effect> effect;
+  fx::EffectMatrixVariable* viewProj = nullptr;
+  fx::EffectVectorVariable* eye = nullptr;
+};
+
+class Shards final : public TranslucentObject {
+ public:
+  Shards(const ObjectSetup& setup, const ShardSettings& settings) : setup_(setup), settings_(settings) {}
+
+  bool Initialize(std::string* error) {
+    std::vector<ShardVertex> mesh = ShardMesh(setup_.seed);
+    std::vector<uint16_t> indices(mesh.size());
+    std::iota(indices.begin(), indices.end(), uint16_t(0));
+    indexCount_ = UINT(indices.size());
+    instances_ = ShardInstances(setup_.seed, settings_);
+    const UINT instanceBytes = UINT(std::max<size_t>(1, instances_.size()) * sizeof(ShardInstance));
+    if (!CreateBuffer(UINT(mesh.size() * sizeof(ShardVertex)), USAGE_IMMUTABLE, BIND_VERTEX_BUFFER, mesh.data(),
+                      &vertices_) ||
+        !CreateBuffer(UINT(indices.size() * 2), USAGE_IMMUTABLE, BIND_INDEX_BUFFER, indices.data(), &indices_) ||
+        !CreateBuffer(instanceBytes, USAGE_DEFAULT, BIND_VERTEX_BUFFER,
+                      instances_.empty() ? nullptr : instances_.data(), &instanceBuffer_) ||
+        !CreateBuffer(instanceBytes, USAGE_DEFAULT, BIND_VERTEX_BUFFER, nullptr, &sortedInstances_)) {
+      *error = "shards: creating the buffers failed";
+      return false;
+    }
+    return true;
+  }
+
+  const char* Name() const override { return "shards.fx"; }
+
+  bool PrepareMethod(const oit::MethodInfo& method, std::string* error) override {
+    if (effects_.count(method.name)) return true;
+    ShardEffect e;
+    e.effect = oit::LoadMethodEffect(setup_.device, method, "shards.fx", {}, error);
+    if (!e.effect) return false;
+    fx::Effect* fx = e.effect.Get();
+    const float light[4] = {setup_.lightDir.x, setup_.lightDir.y, setup_.lightDir.z, 0};
+    fx->GetVariableByName("LightDir")->AsVector()->SetFloatVector(light);
+    fx->GetVariableByName("SurfaceTint")->AsScalar()->SetFloat(settings_.surfaceTint);
+    e.viewProj = fx->GetVariableByName("ViewProj")->AsMatrix();
+    e.eye = fx->GetVariableByName("Eye")->AsVector();
+    if (!layout_ && !CreateLayout(fx, error)) return false;
+    effects_.emplace(method.name, std::move(e));
+    return true;
+  }
+
+  bool Draw(DeviceContext* ctx, const oit::MethodInfo& method, const Camera& camera, const char* pass,
+            oit::DrawOrder order, std::string* error) override {
+    if (instances_.empty()) return true;
+    ShardEffect& e = effects_.at(method.name);
+    fx::EffectPass* p = FindPass(e.effect.Get(), nullptr, pass, error);
+    if (!p) return false;
+    e.viewProj->SetMatrixTranspose(&camera.viewProj[0][0]);  // GLM stores columns: FX11's row-major, transposed
+    const float eye[4] = {camera.eye.x, camera.eye.y, camera.eye.z, 0};
+    e.eye->SetFloatVector(eye);
+    Buffer* instances =
+        order == oit::DrawOrder::BackToFront ? SortBackToFront(ctx, camera) : instanceBuffer_.Get();
+    Buffer* vbs[2] = {vertices_.Get(), instances};
+    UINT strides[2] = {sizeof(ShardVertex), sizeof(ShardInstance)}, offsets[2] = {0, 0};
+    ctx->IASetInputLayout(layout_.Get());
+    ctx->IASetVertexBuffers(0, 2, vbs, strides, offsets);
+    ctx->IASetIndexBuffer(indices_.Get(), DXGI_FORMAT_R16_UINT, 0);
+    ctx->IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLELIST);
+    p->Apply(0, ctx);
+    ctx->DrawIndexedInstanced(indexCount_, UINT(instances_.size()), 0, 0, 0);
+    return true;
+  }
+
+ private:
+  bool CreateBuffer(UINT size, USAGE usage, UINT bind, const void* data, ComPtr<Buffer>* out) {
+    BUFFER_DESC d{size, usage, bind, 0, 0, 0};
+    SUBRESOURCE_DATA init{data, 0, 0};
+    return SUCCEEDED(setup_.device->CreateBuffer(&d, data ? &init : nullptr, out->GetAddressOf()));
+  }
+
+  bool CreateLayout(fx::Effect* effect, std::string* error) {
+    const INPUT_ELEMENT_DESC elements[] = {
+        {"POSITION", 0, DXGI_FORMAT_R32G32B32_FLOAT, 0, 0, INPUT_PER_VERTEX_DATA, 0},
+        {"NORMAL", 0, DXGI_FORMAT_R32G32B32_FLOAT, 0, 12, INPUT_PER_VERTEX_DATA, 0},
+        {"WORLD", 0, DXGI_FORMAT_R32G32B32A32_FLOAT, 1, 0, INPUT_PER_INSTANCE_DATA, 1},
+        {"WORLD", 1, DXGI_FORMAT_R32G32B32A32_FLOAT, 1, 16, INPUT_PER_INSTANCE_DATA, 1},
+        {"WORLD", 2, DXGI_FORMAT_R32G32B32A32_FLOAT, 1, 32, INPUT_PER_INSTANCE_DATA, 1},
+        {"WORLD", 3, DXGI_FORMAT_R32G32B32A32_FLOAT, 1, 48, INPUT_PER_INSTANCE_DATA, 1},
+        {"TINT", 0, DXGI_FORMAT_R32G32B32A32_FLOAT, 1, 64, INPUT_PER_INSTANCE_DATA, 1}};
+    fx::PASS_DESC desc;
+    if (FAILED(effect->GetTechniqueByIndex(0)->GetPassByIndex(0)->GetDesc(&desc)) ||
+        FAILED(setup_.device->CreateInputLayout(elements, 7, desc.pIAInputSignature, desc.IAInputSignatureSize,
+                                                layout_.GetAddressOf()))) {
+      *error = "shards: creating the input layout failed";
+      return false;
+    }
+    return true;
+  }
+
+  // The reference order: instances reordered back to front by the view depth of
+  // their centre (stable, so ties keep their order); returns their buffer.
+  Buffer* SortBackToFront(DeviceContext* ctx, const Camera& camera) {
+    const glm::vec3 forward =
+        glm::normalize(glm::vec3(camera.viewProj[0][3], camera.viewProj[1][3], camera.viewProj[2][3]));  // w row
+    std::vector<float> depth(instances_.size());
+    for (size_t i = 0; i < depth.size(); ++i)
+      depth[i] = glm::dot(glm::vec3(instances_[i].world[3]) - camera.eye, forward);
+    std::vector<uint32_t> order(depth.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return depth[a] > depth[b]; });
+    std::vector<ShardInstance> sorted(order.size());
+    for (size_t i = 0; i < order.size(); ++i) sorted[i] = instances_[order[i]];
+    ctx->UpdateSubresource(sortedInstances_.Get(), 0, nullptr, sorted.data(), 0, 0);
+    return sortedInstances_.Get();
+  }
+
+  ObjectSetup setup_;
+  ShardSettings settings_;
+  UINT indexCount_ = 0;
+  std::vector<ShardInstance> instances_;
+  ComPtr<Buffer> vertices_, indices_, instanceBuffer_, sortedInstances_;
+  ComPtr<InputLayout> layout_;
+  std::map<std::string, ShardEffect> effects_;  // by method name
+};
+
+}  // namespace
+
+std::unique_ptr<TranslucentObject> CreateShards(const ObjectSetup& setup, const ShardSettings& shards,
+                                                std::string* error) {
+  auto object = std::make_unique<Shards>(setup, shards);
+  if (!object->Initialize(error)) return nullptr;
+  return object;
+}
+
+}  // namespace renderer

@@ -1,0 +1,228 @@
+// The smoke and the flames of document 000: the particles of a ParticleSystem
+// (updated by particles.fx's stream-output pass, drawn with DrawAuto because
+// the CPU never knows how many survived) expanded into billboards by
+// shaders_hlsl/smoke.fx, built once per transparency method.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <vector>
+
+#include "fx/effect.h"
+#include "objects/objects.h"
+#include "random.h"
+#include "renderer/effect_files.h"
+
+namespace renderer {
+namespace {
+
+using namespace rhi;
+
+struct ParticleData {
+  float origin[3];
+  float velocity[3];
+  uint32_t seedAge[2];
+  uint32_t kindLife[2];
+};
+static_assert(sizeof(ParticleData) == kParticleStride);
+
+void SetVector(fx::EffectVariable* v, const glm::vec3& x) {
+  const float f[4] = {x.x, x.y, x.z, 0};
+  v->AsVector()->SetFloatVector(f);
+}
+
+// The puff: alpha = density (a soft disc with value noise), rgb = a normal map of a
+// bumpy hemisphere (n * 0.5 + 0.5, y up in texture space).
+std::vector<uint8_t> PuffTexels(uint32_t size, uint32_t seed) {
+  auto noise = [&](float x, float y) {  // value noise on an 8x8 lattice
+    int xi = int(std::floor(x)), yi = int(std::floor(y));
+    float fx = x - xi, fy = y - yi;
+    auto at = [&](int a, int b) { return Random(seed, 200, uint32_t((a & 7) * 8 + (b & 7))); };
+    fx = fx * fx * (3 - 2 * fx), fy = fy * fy * (3 - 2 * fy);
+    float top = at(xi, yi) * (1 - fx) + at(xi + 1, yi) * fx;
+    float bottom = at(xi, yi + 1) * (1 - fx) + at(xi + 1, yi + 1) * fx;
+    return top * (1 - fy) + bottom * fy;
+  };
+  std::vector<uint8_t> texels(size * size * 4);
+  for (uint32_t y = 0; y < size; ++y)
+    for (uint32_t x = 0; x < size; ++x) {
+      float dx = (x + 0.5f) / size * 2 - 1, dy = (y + 0.5f) / size * 2 - 1;
+      float r = std::sqrt(dx * dx + dy * dy);
+      float u = (x + 0.5f) / size * 8, v = (y + 0.5f) / size * 8;
+      float bump = noise(u, v);
+      float density = std::clamp((1.0f - r) * (0.6f + 0.8f * bump), 0.0f, 1.0f);
+      float e = 0.05f;
+      float gx = (noise(u + e, v) - noise(u - e, v)) / (2 * e), gy = (noise(u, v + e) - noise(u, v - e)) / (2 * e);
+      glm::vec3 n{dx - 0.15f * gx, -(dy - 0.15f * gy), std::sqrt(std::max(0.0f, 1.0f - std::min(1.0f, r * r))) + 0.3f};
+      n = glm::normalize(n);
+      uint8_t* t = &texels[(y * size + x) * 4];
+      t[0] = uint8_t(std::lround((n.x * 0.5f + 0.5f) * 255));
+      t[1] = uint8_t(std::lround((n.y * 0.5f + 0.5f) * 255));
+      t[2] = uint8_t(std::lround((n.z * 0.5f + 0.5f) * 255));
+      t[3] = uint8_t(std::lround(density * density * 255));
+    }
+  return texels;
+}
+
+// smoke.fx built for one method, with the variables a frame sets.
+struct SmokeEffect {
+  ComPtr<fx::Effect> effect;
+  fx::EffectMatrixVariable* viewProj = nullptr;
+  fx::EffectVectorVariable* eye = nullptr;
+};
+
+class Smoke final : public TranslucentObject {
+ public:
+  Smoke(const ObjectSetup& setup, bool fire) : setup_(setup), fire_(fire) {}
+
+  bool Initialize(const ParticleSettings& settings, std::string* error) {
+    particles_ = ParticleSystem::Create(setup_.device, settings, error);
+    if (!particles_) return false;
+    constexpr UINT kPuff = 64;
+    std::vector<uint8_t> texels = PuffTexels(kPuff, setup_.seed);
+    TEXTURE2D_DESC d{kPuff, kPuff, 1, 1, DXGI_FORMAT_R8G8B8A8_UNORM, {1, 0}, USAGE_IMMUTABLE, BIND_SHADER_RESOURCE,
+                     0, 0};
+    SUBRESOURCE_DATA init{texels.data(), kPuff * 4, 0};
+    ComPtr<Texture2D> puff;
+    if (FAILED(setup_.device->CreateTexture2D(&d, &init, puff.GetAddressOf())) ||
+        FAILED(setup_.device->CreateShaderResourceView(puff.Get(), nullptr, puff_.GetAddressOf()))) {
+      *error = "smoke: creating the puff texture failed";
+      return false;
+    }
+    return true;
+  }
+
+  const char* Name() const override { return "smoke.fx"; }
+
+  bool PrepareMethod(const oit::MethodInfo& method, std::string* error) override {
+    if (effects_.count(method.name)) return true;
+    EffectDefines defines;
+    if (fire_) defines.emplace_back("FIRE", "1");
+    SmokeEffect e;
+    e.effect = oit::LoadMethodEffect(setup_.device, method, "smoke.fx", defines, error);
+    if (!e.effect) return false;
+    fx::Effect* fx = e.effect.Get();
+    const ParticleSettings& ps = particles_->settings();
+    fx->GetVariableByName("Seconds")->AsScalar()->SetFloat(ps.secondsPerUpdate);
+    SetVector(fx->GetVariableByName("Acceleration"), ps.acceleration);
+    fx->GetVariableByName("Size")->AsScalar()->SetFloat(ps.size);
+    SetVector(fx->GetVariableByName("LightDir"), setup_.lightDir);
+    fx->GetVariableByName("Flame")->AsScalar()->SetFloat(fire_ ? 1.0f : 0.0f);
+    fx->GetVariableByName("Puff")->AsShaderResource()->SetResource(puff_.Get());
+    e.viewProj = fx->GetVariableByName("ViewProj")->AsMatrix();
+    e.eye = fx->GetVariableByName("Eye")->AsVector();
+    if (!layout_ && !CreateLayout(fx, error)) return false;
+    if (method.order == oit::DrawOrder::BackToFront && !CreateSortBuffers(error)) return false;
+    effects_.emplace(method.name, std::move(e));
+    return true;
+  }
+
+  void Update(DeviceContext* context, bool countLive) override { particles_->Update(context, countLive); }
+  uint64_t LiveCount() const override { return particles_->liveCount(); }
+
+  bool Draw(DeviceContext* ctx, const oit::MethodInfo& method, const Camera& camera, const char* pass,
+            oit::DrawOrder order, std::string* error) override {
+    SmokeEffect& e = effects_.at(method.name);
+    fx::EffectPass* p = FindPass(e.effect.Get(), nullptr, pass, error);
+    if (!p) return false;
+    e.viewProj->SetMatrixTranspose(&camera.viewProj[0][0]);  // GLM stores columns: FX11's row-major, transposed
+    const float eye[4] = {camera.eye.x, camera.eye.y, camera.eye.z, 0};
+    e.eye->SetFloatVector(eye);
+    Buffer* input = particles_->current();
+    UINT sortedCount = 0;
+    if (order == oit::DrawOrder::BackToFront) input = SortBackToFront(ctx, camera, &sortedCount);
+    UINT stride = kParticleStride, offset = 0;
+    ctx->IASetInputLayout(layout_.Get());
+    ctx->IASetVertexBuffers(0, 1, &input, &stride, &offset);
+    ctx->IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_POINTLIST);
+    p->Apply(0, ctx);
+    if (order == oit::DrawOrder::BackToFront)
+      ctx->Draw(sortedCount, 0);
+    else
+      ctx->DrawAuto();  // the CPU does not know how many particles survived
+    return true;
+  }
+
+ private:
+  bool CreateLayout(fx::Effect* effect, std::string* error) {
+    fx::PASS_DESC desc;
+    const INPUT_ELEMENT_DESC elements[] = {
+        {"ORIGIN", 0, DXGI_FORMAT_R32G32B32_FLOAT, 0, 0, INPUT_PER_VERTEX_DATA, 0},
+        {"VELOCITY", 0, DXGI_FORMAT_R32G32B32_FLOAT, 0, 12, INPUT_PER_VERTEX_DATA, 0},
+        {"SEEDAGE", 0, DXGI_FORMAT_R32G32_UINT, 0, 24, INPUT_PER_VERTEX_DATA, 0},
+        {"KINDLIFE", 0, DXGI_FORMAT_R32G32_UINT, 0, 32, INPUT_PER_VERTEX_DATA, 0}};
+    if (FAILED(effect->GetTechniqueByIndex(0)->GetPassByIndex(0)->GetDesc(&desc)) ||
+        FAILED(setup_.device->CreateInputLayout(elements, 4, desc.pIAInputSignature, desc.IAInputSignatureSize,
+                                                layout_.GetAddressOf()))) {
+      *error = "smoke: creating the billboard input layout failed";
+      return false;
+    }
+    return true;
+  }
+
+  // The staging copy the particles are read back into and the vertex buffer of their sorted copy.
+  bool CreateSortBuffers(std::string* error) {
+    if (staging_) return true;
+    const UINT bytes = particles_->capacity() * kParticleStride;
+    BUFFER_DESC staging{bytes, USAGE_STAGING, 0, CPU_ACCESS_READ, 0, 0};
+    BUFFER_DESC sorted{bytes, USAGE_DEFAULT, BIND_VERTEX_BUFFER, 0, 0, 0};
+    if (FAILED(setup_.device->CreateBuffer(&staging, nullptr, staging_.GetAddressOf())) ||
+        FAILED(setup_.device->CreateBuffer(&sorted, nullptr, sorted_.GetAddressOf()))) {
+      *error = "smoke: creating the buffers of the sorted copy failed";
+      return false;
+    }
+    return true;
+  }
+
+  // The reference order: the particles read back, sorted back to front by view
+  // depth (stable, so ties keep buffer order) and uploaded; returns their buffer.
+  Buffer* SortBackToFront(DeviceContext* ctx, const Camera& camera, UINT* count) {
+    const ParticleSettings& ps = particles_->settings();
+    ctx->CopyResource(staging_.Get(), particles_->current());
+    std::vector<ParticleData> live;
+    MAPPED_SUBRESOURCE mapped{};
+    if (SUCCEEDED(ctx->Map(staging_.Get(), 0, MAP_READ, 0, &mapped))) {
+      const auto* data = static_cast<const ParticleData*>(mapped.pData);
+      // SO_STATISTICS of this frame's update (the frame driver counts for back-to-front methods).
+      live.assign(data, data + std::min<uint64_t>(particles_->liveCount(), particles_->capacity()));
+      ctx->Unmap(staging_.Get(), 0);
+    }
+    const glm::vec3 forward =
+        glm::normalize(glm::vec3(camera.viewProj[0][3], camera.viewProj[1][3], camera.viewProj[2][3]));  // w row
+    std::vector<float> depth(live.size());
+    for (size_t i = 0; i < live.size(); ++i) {
+      const ParticleData& p = live[i];
+      float t = p.seedAge[1] * ps.secondsPerUpdate;
+      glm::vec3 c = 0.5f * t * t * ps.acceleration + t * glm::vec3(p.velocity[0], p.velocity[1], p.velocity[2]) +
+                    glm::vec3(p.origin[0], p.origin[1], p.origin[2]);
+      depth[i] = glm::dot(c - camera.eye, forward);
+    }
+    std::vector<uint32_t> order(live.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return depth[a] > depth[b]; });
+    std::vector<ParticleData> sorted(particles_->capacity());
+    for (size_t i = 0; i < order.size(); ++i) sorted[i] = live[order[i]];
+    ctx->UpdateSubresource(sorted_.Get(), 0, nullptr, sorted.data(), 0, 0);
+    *count = UINT(order.size());
+    return sorted_.Get();
+  }
+
+  ObjectSetup setup_;
+  bool fire_;
+  std::unique_ptr<ParticleSystem> particles_;
+  ComPtr<ShaderResourceView> puff_;
+  ComPtr<InputLayout> layout_;
+  ComPtr<Buffer> staging_, sorted_;
+  std::map<std::string, SmokeEffect> effects_;  // by method name
+};
+
+}  // namespace
+
+std::unique_ptr<TranslucentObject> CreateSmoke(const ObjectSetup& setup, const ParticleSettings& particles, bool fire,
+                                               std::string* error) {
+  auto smoke = std::make_unique<Smoke>(setup, fire);
+  if (!smoke->Initialize(particles, error)) return nullptr;
+  return smoke;
+}
+
+}  // namespace renderer

@@ -1,0 +1,36 @@
+// What every transparency method's include (shaders_hlsl/oit/<method>.fxh) shares:
+// the depth and rasterizer states of document 000's passes and the object pass.
+//
+// A method's effect for an object is the object's shader file built with the
+// define OIT_METHOD="oit/<method>.fxh" (renderer/oit/method.h loads it); the
+// object file defines, before it includes OIT_METHOD:
+//   OBJECT_VS     its vertex shader's entry point
+//   OBJECT_GS     its geometry shader: NULL or CompileShader(gs_5_0, <entry>())
+//   OBJECT_PIXEL  the pixel shader's input struct, with `float4 position : SV_Position`
+//   void Shade(OBJECT_PIXEL p, out float3 c, out float a, out float3 t)
+//                 colour, opacity and transmission of a fragment.
+// A method's technique holds every pass of the method, as an FX11 technique
+// does; a method's own passes (those that draw no object, such as composing)
+// are also built from the same include without an object (oit/method.fx):
+// OBJECT_VS is then undefined.
+#ifndef OIT_COMMON_FXH
+#define OIT_COMMON_FXH
+
+// Translucent surfaces are tested against the opaque depth but never write it;
+// the composing pass uses no depth.
+DepthStencilState DepthTestNoWrite { DepthEnable = TRUE; DepthWriteMask = ZERO; DepthFunc = LESS; };
+DepthStencilState NoDepth { DepthEnable = FALSE; DepthWriteMask = ZERO; };
+RasterizerState NoCull { CullMode = NONE; };
+
+// The pass that draws the object with the pixel shader `ps` and the blend state `blend`.
+#define OBJECT_PASS(name, ps, blend)                         \
+  pass name {                                                \
+    SetVertexShader(CompileShader(vs_5_0, OBJECT_VS()));     \
+    SetGeometryShader(OBJECT_GS);                            \
+    SetPixelShader(CompileShader(ps_5_0, ps()));             \
+    SetBlendState(blend, float4(0, 0, 0, 0), 0xFFFFFFFF);    \
+    SetDepthStencilState(DepthTestNoWrite, 0);               \
+    SetRasterizerState(NoCull);                              \
+  }
+
+#endif

@@ -1,0 +1,33 @@
+// The 2D composing pass of the weighted methods (WBOIT, colored OIT): a
+// full-screen triangle (Draw(3, 0), no vertex buffer) reading accum and
+// revealage, writing (accum.rgb / max(accum.a, 0.0001), 1 - revealage) through
+// the method's composing blend state (Table 2 or 4).
+#ifndef OIT_WEIGHTED_COMPOSE_FXH
+#define OIT_WEIGHTED_COMPOSE_FXH
+
+Texture2D<float4> Accum;      // R16G16B16A16_FLOAT: the sum of (c*a, a)*w
+Texture2D<float4> Revealage;  // R8_UNORM: the product of (1 - a)
+
+float4 VSFullscreen(uint id : SV_VertexID) : SV_Position {
+  float2 uv = float2((id << 1) & 2, id & 2);
+  return float4(uv * float2(2, -2) + float2(-1, 1), 0, 1);
+}
+
+float4 PSCompose(float4 pos : SV_Position) : SV_Target {
+  int3 p = int3(pos.xy, 0);
+  float4 accum = Accum.Load(p);
+  float r = Revealage.Load(p).r;
+  return float4(accum.rgb / max(accum.a, 0.0001), 1.0 - r);
+}
+
+#define COMPOSE_PASS(blend)                                   \
+  pass Compose {                                              \
+    SetVertexShader(CompileShader(vs_5_0, VSFullscreen()));   \
+    SetGeometryShader(NULL);                                  \
+    SetPixelShader(CompileShader(ps_5_0, PSCompose()));       \
+    SetBlendState(blend, float4(0, 0, 0, 0), 0xFFFFFFFF);     \
+    SetDepthStencilState(NoDepth, 0);                         \
+    SetRasterizerState(NoCull);                               \
+  }
+
+#endif

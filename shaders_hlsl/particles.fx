@@ -1,6 +1,6 @@
 // The GPU particle system of document 000 as one effect: technique Update
 // streams the particles out through a geometry shader (nothing rasterized),
-// technique Draw expands them into alpha-blended billboards. Both geometry
+// technique Alpha expands them into alpha-blended billboards. Both geometry
 // shaders live here although glslang 12 crashes on a source holding a
 // PointStream GS and a TriangleStream GS: the effect runtime blanks the other
 // stream-type GS before compiling each entry.
@@ -27,16 +27,8 @@ cbuffer DrawParams : register(b1) {
 Texture2D Puff;
 SamplerState Linear { Filter = MIN_MAG_MIP_LINEAR; AddressU = Clamp; AddressV = Clamp; };
 
-DepthStencilState DisableDepth { DepthEnable = FALSE; DepthWriteMask = ZERO; };
-RasterizerState NoCull { CullMode = NONE; };  // billboards face the eye either way round
-DepthStencilState TestNoWrite { DepthEnable = TRUE; DepthWriteMask = ZERO; DepthFunc = LESS; };
-BlendState AlphaBlend {
-  BlendEnable[0] = TRUE;
-  SrcBlend[0] = SRC_ALPHA;
-  DestBlend[0] = INV_SRC_ALPHA;
-  SrcBlendAlpha[0] = ONE;
-  DestBlendAlpha[0] = INV_SRC_ALPHA;
-};
+// NoDepth, DepthTestNoWrite and NoCull (billboards face the eye either way round).
+#include "oit/common.fxh"
 
 // ---------------------------------------------------------------------------
 // Update
@@ -86,9 +78,12 @@ void GSBillboard(point Center input[1], inout TriangleStream<Billboard> stream) 
   }
 }
 
-float4 PSSmoke(Billboard b) : SV_Target {
+// The billboards as a translucent object of the transparency methods (oit/common.fxh).
+void Shade(Billboard b, out float3 c, out float a, out float3 t) {
   float4 puff = Puff.Sample(Linear, b.uv);
-  return float4(puff.rgb, puff.a * b.alpha);
+  c = puff.rgb;
+  a = puff.a * b.alpha;
+  t = c;
 }
 
 technique11 Update {
@@ -97,17 +92,13 @@ technique11 Update {
     SetGeometryShader(ConstructGSWithSO(CompileShader(gs_5_0, GSUpdate()),
                                         "ORIGIN.xyz; VELOCITY.xyz; SEEDAGE.xy; KINDLIFE.xy"));
     SetPixelShader(NULL);
-    SetDepthStencilState(DisableDepth, 0);
+    SetDepthStencilState(NoDepth, 0);
   }
 }
 
-technique11 Draw {
-  pass P0 {
-    SetVertexShader(CompileShader(vs_5_0, VSParticle()));
-    SetGeometryShader(CompileShader(gs_5_0, GSBillboard()));
-    SetPixelShader(CompileShader(ps_5_0, PSSmoke()));
-    SetBlendState(AlphaBlend, float4(0, 0, 0, 0), 0xFFFFFFFF);
-    SetDepthStencilState(TestNoWrite, 0);
-    SetRasterizerState(NoCull);
-  }
-}
+// The draw pass: technique Alpha, pass Transparency, plain alpha blending (OVER), depth
+// tested and not written, no culling.
+#define OBJECT_VS VSParticle
+#define OBJECT_GS CompileShader(gs_5_0, GSBillboard())
+#define OBJECT_PIXEL Billboard
+#include "oit/alpha.fxh"

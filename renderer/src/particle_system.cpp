@@ -72,14 +72,14 @@ bool ParticleSystem::Initialize(Device* device, const ParticleSettings& settings
     return false;
   };
 
-  // shaders_hlsl/particles.fx: technique Update (the stream-output pass) and Draw.
+  // shaders_hlsl/particles.fx: technique Update (the stream-output pass) and Alpha (the billboards).
   effect_ = LoadEffect(device, "particles.fx", {MaxSpawnPerUpdateDefine(rule)}, error);
   if (!effect_) return false;
   updatePass_ = effect_->GetTechniqueByName("Update")->GetPassByIndex(0);
-  drawPass_ = effect_->GetTechniqueByName("Draw")->GetPassByIndex(0);
+  drawPass_ = effect_->GetTechniqueByName("Alpha")->GetPassByName("Transparency");
   fx::PASS_DESC update;
   if (!updatePass_->IsValid() || !drawPass_->IsValid() || FAILED(updatePass_->GetDesc(&update)))
-    return fail("finding the Update and Draw passes");
+    return fail("finding the passes Update/StreamOut and Alpha/Transparency");
   const INPUT_ELEMENT_DESC elements[] = {
       {"ORIGIN", 0, DXGI_FORMAT_R32G32B32_FLOAT, 0, 0, INPUT_PER_VERTEX_DATA, 0},
       {"VELOCITY", 0, DXGI_FORMAT_R32G32B32_FLOAT, 0, 12, INPUT_PER_VERTEX_DATA, 0},

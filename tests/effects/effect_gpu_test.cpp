@@ -255,7 +255,7 @@ TEST_F(EffectTest, ParticlesMatchTheCpuModel) {
   SetViewport(32, 32);
   rhi::Buffer* in = buffers[current].Get();
   context->IASetVertexBuffers(0, 1, &in, &stride, &zero);
-  ASSERT_EQ(effect->GetTechniqueByName("Draw")->GetPassByIndex(0)->Apply(0, context.Get()), rhi::S_OK);
+  ASSERT_EQ(effect->GetTechniqueByName("Alpha")->GetPassByName("Transparency")->Apply(0, context.Get()), rhi::S_OK);
   context->DrawAuto();
   std::vector<uint8_t> pixels = ReadTexture(target.texture.Get());
   int lit = 0;

@@ -41,7 +41,7 @@ class ParticleSystem {
   // One update pass: the current buffer in, the other out through stream output.
   // countLive: an SO_STATISTICS query around it, read back (a wait) into liveCount().
   void Update(rhi::DeviceContext* context, bool countLive = false);
-  // Billboards of the live particles with DrawAuto, through the effect's Draw pass (OVER
+  // Billboards of the live particles with DrawAuto, through the effect's Alpha/Transparency pass (OVER
   // blending, depth tested and not written, no culling) into the caller's targets.
   void Draw(rhi::DeviceContext* context, const Camera& camera);
 

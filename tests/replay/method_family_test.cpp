@@ -1,0 +1,149 @@
+// The family of transparency methods (renderer/oit) and scenes (renderer/scenes.h)
+// through their registries: every method runs on every scene, its passes are
+// the effect passes the trace shows, its memory is what its targets take, and
+// what cannot be made is refused with the reason.
+#include <set>
+#include <string>
+#include <vector>
+
+#include "gpu_test.h"
+#include "renderer/translucency.h"
+#include "rhi/trace.h"
+
+namespace rhi_test {
+namespace {
+
+using renderer::Translucency;
+using renderer::TranslucencySettings;
+using renderer::oit::MethodInfo;
+
+class MethodFamilyTest : public GpuTest {
+ protected:
+  std::unique_ptr<Translucency> Make(const char* scene, rhi::DeviceContext* ctx = nullptr) {
+    TranslucencySettings s;
+    s.scene = scene;
+    s.width = 40, s.height = 24;
+    s.rule = {4, 2, 5, 5};
+    s.shardCount = 20;
+    std::string error;
+    auto t = Translucency::Create(device.Get(), ctx ? ctx : context.Get(), s, &error);
+    EXPECT_NE(t, nullptr) << error;
+    return t;
+  }
+};
+
+TEST_F(MethodFamilyTest, RegistriesHaveUniqueNamesThatFindTheirEntries) {
+  std::set<std::string> names;
+  for (const MethodInfo* m : renderer::oit::Methods()) {
+    EXPECT_TRUE(names.insert(m->name).second) << m->name;
+    EXPECT_EQ(renderer::oit::FindMethod(m->name), m);
+    EXPECT_NE(std::string(m->include).find("oit/"), std::string::npos) << m->name;
+    EXPECT_NE(m->create, nullptr);
+  }
+  EXPECT_EQ(renderer::oit::FindMethod("nope"), nullptr);
+  for (const renderer::SceneInfo* s : renderer::Scenes()) EXPECT_EQ(renderer::FindScene(s->name), s);
+  EXPECT_EQ(renderer::FindScene("nope"), nullptr);
+}
+
+TEST_F(MethodFamilyTest, NeedsAreDescribedInWords) {
+  using namespace renderer::oit;
+  EXPECT_EQ(DescribeNeeds(0), "nothing beyond D3D11.0");
+  EXPECT_EQ(DescribeNeeds(kNeedsPixelShaderUavs | kNeedsMsaa), "pixel-shader UAVs, MSAA");
+  EXPECT_EQ(DescribeNeeds(kNeedsFloat32Blend | kNeedsCompute), "float32 blending, compute");
+}
+
+// Each method's passes, as Method::PassNames says, are the passes the frame applies
+// after the opaque pass and the object updates (their "technique/pass" markers).
+TEST_F(MethodFamilyTest, EveryMethodAppliesThePassesItNames) {
+  for (const char* scene : {"smoke", "shards"})
+    for (const MethodInfo* method : renderer::oit::Methods()) {
+      SCOPED_TRACE(std::string(scene) + " " + method->name);
+      rhi::Trace trace;
+      ComPtr<rhi::DeviceContext> traced;
+      ASSERT_EQ(rhi::CreateTracingContext(context.Get(), &trace, traced.GetAddressOf()), rhi::S_OK);
+      auto t = Make(scene, traced.Get());
+      ASSERT_TRUE(t);
+      ASSERT_TRUE(t->RenderFrame(*method)) << t->error();
+      std::vector<std::string> passes;
+      for (const std::string& marker : trace.Filter({"SetMarker"})) {
+        if (marker == "SetMarker(Opaque/Scene)" || marker == "SetMarker(Update/StreamOut)") continue;
+        passes.push_back(marker.substr(marker.find('/') + 1, marker.size() - marker.find('/') - 2));
+      }
+      const renderer::oit::Method* instance = t->MethodInstance(*method);
+      ASSERT_NE(instance, nullptr);
+      EXPECT_EQ(passes, instance->PassNames());
+      traced.Reset();
+    }
+}
+
+// Memory: the targets a method creates, computed here from their formats
+// (accum R16G16B16A16_FLOAT: 8 bytes, revealage R8_UNORM: 1 byte per pixel).
+TEST_F(MethodFamilyTest, MethodsReportTheMemoryOfTheirTargets) {
+  auto t = Make("shards");
+  ASSERT_TRUE(t);
+  const uint64_t pixels = 40 * 24;
+  const struct {
+    const char* method;
+    uint64_t bytes;
+  } kExpected[] = {{"alpha", 0}, {"sorted", 0}, {"wboit", pixels * 9}, {"colored", pixels * 9},
+                   {"colored-literal", pixels * 9}};
+  for (const auto& e : kExpected) {
+    const MethodInfo* method = renderer::oit::FindMethod(e.method);
+    ASSERT_NE(method, nullptr) << e.method;
+    ASSERT_TRUE(t->RenderFrame(*method)) << t->error();
+    EXPECT_EQ(t->MethodInstance(*method)->MemoryBytes(), e.bytes) << e.method;
+  }
+}
+
+// A method whose pass no object's effect has: the frame is refused with the
+// object, the method and the pass named, and the frame index does not advance.
+class MissingPassMethod final : public renderer::oit::Method {
+ public:
+  void Render(const renderer::oit::RenderArgs& a) override {
+    a.marks->BeginPass(0);
+    a.geometry->Draw(a.context, "Peel", renderer::oit::DrawOrder::AsSubmitted);
+  }
+  uint64_t MemoryBytes() const override { return 0; }
+  const std::vector<std::string>& PassNames() const override { return passes_; }
+
+ private:
+  std::vector<std::string> passes_{"Peel"};
+};
+std::unique_ptr<renderer::oit::Method> CreateMissingPass(const MethodInfo&, const renderer::oit::MethodSetup&,
+                                                         std::string*) {
+  return std::make_unique<MissingPassMethod>();
+}
+
+TEST_F(MethodFamilyTest, APassNoObjectHasIsRefusedWithTheReason) {
+  const MethodInfo missing{"missing-pass", "oit/alpha.fxh", 0, renderer::oit::DrawOrder::AsSubmitted, "test",
+                           CreateMissingPass};
+  auto t = Make("shards");
+  ASSERT_TRUE(t);
+  EXPECT_FALSE(t->RenderFrame(missing));
+  EXPECT_NE(t->error().find("shards.fx"), std::string::npos) << t->error();
+  EXPECT_NE(t->error().find("Peel"), std::string::npos) << t->error();
+  EXPECT_EQ(t->frame(), 0u);
+}
+
+// An include that does not exist: the effect's error (file:line:column) reaches error().
+TEST_F(MethodFamilyTest, AMissingIncludeIsRefusedWithTheCompilersMessage) {
+  const MethodInfo broken{"broken", "oit/no_such_method.fxh", 0, renderer::oit::DrawOrder::AsSubmitted, "test",
+                          renderer::oit::FindMethod("alpha")->create};
+  auto t = Make("shards");
+  ASSERT_TRUE(t);
+  EXPECT_FALSE(t->RenderFrame(broken));
+  EXPECT_NE(t->error().find("shards.fx"), std::string::npos) << t->error();
+  EXPECT_NE(t->error().find("no_such_method.fxh"), std::string::npos) << t->error();
+}
+
+TEST_F(MethodFamilyTest, AnUnknownSceneIsRefusedWithTheSceneNames) {
+  TranslucencySettings s;
+  s.scene = "teapot";
+  std::string error;
+  EXPECT_EQ(Translucency::Create(device.Get(), context.Get(), s, &error), nullptr);
+  EXPECT_NE(error.find("teapot"), std::string::npos) << error;
+  EXPECT_NE(error.find("smoke, fire, shards"), std::string::npos) << error;
+}
+
+}  // namespace
+}  // namespace rhi_test

@@ -7,6 +7,48 @@
 namespace renderer {
 namespace {
 
+void AddQuad(std::vector<BackdropVertex>* v, glm::vec3 o, glm::vec3 u, glm::vec3 w, glm::vec3 color) {
+  glm::vec3 n = glm::normalize(glm::cross(w, u));  // left-handed: u right, w up -> normal towards the viewer
+  BackdropVertex a{o, n, color}, b{o + u, n, color}, c{o + u + w, n, color}, d{o + w, n, color};
+  v->insert(v->end(), {a, b, c, a, c, d});
+}
+
+void AddBox(std::vector<BackdropVertex>* v, glm::vec3 lo, glm::vec3 hi, glm::vec3 color) {
+  glm::vec3 s = hi - lo;
+  glm::vec3 X{s.x, 0, 0}, Y{0, s.y, 0}, Z{0, 0, s.z};
+  AddQuad(v, lo, X, Y, color);                        // -z
+  AddQuad(v, lo + X + Z, -X, Y, color);               // +z
+  AddQuad(v, lo + Z, -Z, Y, color);                   // -x
+  AddQuad(v, lo + X, Z, Y, color);                    // +x
+  AddQuad(v, lo + Y, X, Z, color);                    // +y
+  AddQuad(v, lo + Z, X, -Z, color);                   // -y
+}
+
+// The room of document 000's demos: coloured stripes on the back wall, a checkered
+// floor and five cubes (neutral: all grey).
+std::vector<BackdropVertex> StripedRoom(const TranslucencySettings& s) {
+  const bool neutral = s.neutralBackground;
+  std::vector<BackdropVertex> v;
+  const glm::vec3 palette[8] = {{0.9f, 0.15f, 0.12f}, {0.95f, 0.55f, 0.1f}, {0.95f, 0.9f, 0.2f}, {0.2f, 0.75f, 0.25f},
+                                {0.15f, 0.75f, 0.85f}, {0.15f, 0.3f, 0.9f},  {0.6f, 0.2f, 0.8f},  {0.95f, 0.95f, 0.95f}};
+  const glm::vec3 grey{0.6f, 0.6f, 0.6f};
+  for (int i = 0; i < 20; ++i)  // the back wall: vertical stripes
+    AddQuad(&v, {-10.0f + i, 0, 4.5f}, {1, 0, 0}, {0, 9, 0}, neutral ? grey : palette[i % 8]);
+  for (int i = 0; i < 10; ++i)  // the floor: a checker of bands
+    for (int j = 0; j < 8; ++j) {
+      glm::vec3 c = ((i + j) & 1) ? glm::vec3(0.35f) : glm::vec3(0.55f);
+      AddQuad(&v, {-10.0f + 2 * i, 0, 4.5f - 2 * (j + 1)}, {2, 0, 0}, {0, 0, 2}, neutral ? grey : c);
+    }
+  struct Box {
+    glm::vec3 lo, hi;
+    int color;
+  } boxes[] = {{{-4.0f, 0, 2.0f}, {-2.8f, 1.2f, 3.2f}, 0}, {{2.2f, 0, 2.4f}, {3.8f, 1.6f, 4.0f}, 5},
+               {{-0.6f, 0, 3.2f}, {0.6f, 0.8f, 4.2f}, 2},  {{-2.2f, 0, -1.5f}, {-1.4f, 0.6f, -0.7f}, 3},
+               {{1.2f, 0, -0.9f}, {1.9f, 2.4f, -0.2f}, 6}};
+  for (const Box& b : boxes) AddBox(&v, b.lo, b.hi, neutral ? grey : palette[b.color]);
+  return v;
+}
+
 ObjectSetup Setup(rhi::Device* device, const TranslucencySettings& s) {
   return {device, s.seed, SceneLightDirection()};
 }
@@ -72,11 +114,11 @@ bool BuildShards(rhi::Device* device, const TranslucencySettings& s,
 }
 
 const SceneInfo kSmoke{"smoke", "document 000's GPU particle smoke over the opaque scene (Fig. 1)",
-                       {0.3f, 1.5f, 0.5f}, 7.0f, 120, BuildSmoke};
+                       {0.3f, 1.5f, 0.5f}, 7.0f, 120, StripedRoom, BuildSmoke};
 const SceneInfo kFire{"fire", "the same particle system as flames; OVER is additive there",
-                      {0.3f, 1.5f, 0.5f}, 7.0f, 120, BuildFire};
+                      {0.3f, 1.5f, 0.5f}, 7.0f, 120, StripedRoom, BuildFire};
 const SceneInfo kShards{"shards", "document 000's instanced coloured glass shards (one DrawIndexedInstanced)",
-                        {0.0f, 1.9f, 0.0f}, 7.5f, 1, BuildShards};
+                        {0.0f, 1.9f, 0.0f}, 7.5f, 1, StripedRoom, BuildShards};
 
 }  // namespace
 

@@ -16,49 +16,6 @@ using namespace rhi;
 
 namespace {
 
-struct OpaqueVertex {
-  glm::vec3 position, normal, color;
-};
-
-void AddQuad(std::vector<OpaqueVertex>* v, glm::vec3 o, glm::vec3 u, glm::vec3 w, glm::vec3 color) {
-  glm::vec3 n = glm::normalize(glm::cross(w, u));  // left-handed: u right, w up -> normal towards the viewer
-  OpaqueVertex a{o, n, color}, b{o + u, n, color}, c{o + u + w, n, color}, d{o + w, n, color};
-  v->insert(v->end(), {a, b, c, a, c, d});
-}
-
-void AddBox(std::vector<OpaqueVertex>* v, glm::vec3 lo, glm::vec3 hi, glm::vec3 color) {
-  glm::vec3 s = hi - lo;
-  glm::vec3 X{s.x, 0, 0}, Y{0, s.y, 0}, Z{0, 0, s.z};
-  AddQuad(v, lo, X, Y, color);                        // -z
-  AddQuad(v, lo + X + Z, -X, Y, color);               // +z
-  AddQuad(v, lo + Z, -Z, Y, color);                   // -x
-  AddQuad(v, lo + X, Z, Y, color);                    // +x
-  AddQuad(v, lo + Y, X, Z, color);                    // +y
-  AddQuad(v, lo + Z, X, -Z, color);                   // -y
-}
-
-std::vector<OpaqueVertex> OpaqueScene(bool neutral) {
-  std::vector<OpaqueVertex> v;
-  const glm::vec3 palette[8] = {{0.9f, 0.15f, 0.12f}, {0.95f, 0.55f, 0.1f}, {0.95f, 0.9f, 0.2f}, {0.2f, 0.75f, 0.25f},
-                                {0.15f, 0.75f, 0.85f}, {0.15f, 0.3f, 0.9f},  {0.6f, 0.2f, 0.8f},  {0.95f, 0.95f, 0.95f}};
-  const glm::vec3 grey{0.6f, 0.6f, 0.6f};
-  for (int i = 0; i < 20; ++i)  // the back wall: vertical stripes
-    AddQuad(&v, {-10.0f + i, 0, 4.5f}, {1, 0, 0}, {0, 9, 0}, neutral ? grey : palette[i % 8]);
-  for (int i = 0; i < 10; ++i)  // the floor: a checker of bands
-    for (int j = 0; j < 8; ++j) {
-      glm::vec3 c = ((i + j) & 1) ? glm::vec3(0.35f) : glm::vec3(0.55f);
-      AddQuad(&v, {-10.0f + 2 * i, 0, 4.5f - 2 * (j + 1)}, {2, 0, 0}, {0, 0, 2}, neutral ? grey : c);
-    }
-  struct Box {
-    glm::vec3 lo, hi;
-    int color;
-  } boxes[] = {{{-4.0f, 0, 2.0f}, {-2.8f, 1.2f, 3.2f}, 0}, {{2.2f, 0, 2.4f}, {3.8f, 1.6f, 4.0f}, 5},
-               {{-0.6f, 0, 3.2f}, {0.6f, 0.8f, 4.2f}, 2},  {{-2.2f, 0, -1.5f}, {-1.4f, 0.6f, -0.7f}, 3},
-               {{1.2f, 0, -0.9f}, {1.9f, 2.4f, -0.2f}, 6}};
-  for (const Box& b : boxes) AddBox(&v, b.lo, b.hi, neutral ? grey : palette[b.color]);
-  return v;
-}
-
 void SetMatrix(fx::EffectMatrixVariable* v, const glm::mat4& m) {
   v->SetMatrixTranspose(&m[0][0]);  // GLM stores columns: the transpose of FX11's row-major array
 }
@@ -196,7 +153,7 @@ bool Translucency::Initialize(Device* device, DeviceContext* context, const Tran
       FAILED(device->CreateDepthStencilView(m.depth.Get(), nullptr, m.dsv.GetAddressOf())))
     return fail("creating the frame and the depth buffer");
 
-  // The opaque backdrop: scene.fx, technique Opaque.
+  // The opaque backdrop of the scene: scene.fx, technique Opaque.
   m.sceneFx = LoadEffect(device, "scene.fx", {}, &error_);
   if (!m.sceneFx || !(m.opaquePass = FindPass(m.sceneFx.Get(), "Opaque", "Scene", &error_))) return false;
   const INPUT_ELEMENT_DESC opaqueElements[] = {
@@ -211,9 +168,9 @@ bool Translucency::Initialize(Device* device, DeviceContext* context, const Tran
   m.viewProj = m.sceneFx->GetVariableByName("ViewProj")->AsMatrix();
   m.lightDir = m.sceneFx->GetVariableByName("LightDir")->AsVector();
   m.ambient = m.sceneFx->GetVariableByName("Ambient")->AsScalar();
-  std::vector<OpaqueVertex> scene = OpaqueScene(s.neutralBackground);
+  std::vector<BackdropVertex> scene = scene_->backdrop(s);
   m.opaqueVertices = UINT(scene.size());
-  BUFFER_DESC vb{UINT(scene.size() * sizeof(OpaqueVertex)), USAGE_IMMUTABLE, BIND_VERTEX_BUFFER, 0, 0, 0};
+  BUFFER_DESC vb{UINT(scene.size() * sizeof(BackdropVertex)), USAGE_IMMUTABLE, BIND_VERTEX_BUFFER, 0, 0, 0};
   SUBRESOURCE_DATA init{scene.data(), 0, 0};
   if (FAILED(device->CreateBuffer(&vb, &init, m.opaqueVb.GetAddressOf()))) return fail("the opaque vertex buffer");
 
@@ -307,7 +264,7 @@ void Translucency::OpaquePass() {
   SetMatrix(m.viewProj, camera_.viewProj);
   SetVector(m.lightDir, SceneLightDirection());
   m.ambient->SetFloat(0.45f);
-  UINT stride = sizeof(OpaqueVertex), offset = 0;
+  UINT stride = sizeof(BackdropVertex), offset = 0;
   Buffer* vb = m.opaqueVb.Get();
   ctx->IASetInputLayout(m.opaqueLayout.Get());
   ctx->IASetVertexBuffers(0, 1, &vb, &stride, &offset);

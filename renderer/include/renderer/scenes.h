@@ -1,5 +1,5 @@
-// The scenes of the replays: the opaque backdrop (scene.fx: stripes, floor,
-// cubes), a list of translucent objects and a camera rig. The registry
+// The scenes of the replays: an opaque backdrop (drawn with scene.fx), a list of
+// translucent objects and a camera rig. The registry
 // (Scenes()) is the one list the apps and the tests iterate.
 #pragma once
 
@@ -17,6 +17,11 @@ namespace renderer {
 
 struct TranslucencySettings;
 
+// A vertex of the opaque backdrop (scene.fx): Lambert-lit, coloured per vertex.
+struct BackdropVertex {
+  glm::vec3 position, normal, color;
+};
+
 struct SceneInfo {
   const char* name;     // command lines and file names: "smoke"
   const char* summary;  // one line for listings
@@ -26,6 +31,9 @@ struct SceneInfo {
   // Frames a replay renders unless told otherwise: enough for its particles to
   // reach their steady state, 1 for a scene that does not change.
   int defaultFrames;
+  // The opaque geometry, drawn first, whose depth bounds every translucent surface
+  // (a triangle list).
+  std::vector<BackdropVertex> (*backdrop)(const TranslucencySettings& settings);
   // Adds the scene's translucent objects (settings.extraShards adds shards to any scene).
   bool (*build)(rhi::Device* device, const TranslucencySettings& settings,
                 std::vector<std::unique_ptr<TranslucentObject>>* objects, std::string* error);

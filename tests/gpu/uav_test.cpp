@@ -8,6 +8,7 @@
 #include <functional>
 
 #include "gpu_helpers.h"
+#include "rhi/trace.h"
 
 namespace rhi_test {
 namespace {
@@ -583,6 +584,26 @@ TEST_F(UavTest, CopyStructureCountRefusals) {
   EXPECT_EQ(ReadBufferAs<uint32_t>(dst.Get()), (std::vector<uint32_t>{11, 22})) << "a refused copy wrote";
   context->CopyStructureCount(dst.Get(), 4, counted.uav.Get());
   EXPECT_EQ(ReadBufferAs<uint32_t>(dst.Get()), (std::vector<uint32_t>{11, 0})) << "a new counter counts from 0";
+}
+
+// rhi/trace.h records the new calls and forwards them unchanged.
+TEST_F(UavTest, TracingContextRecordsAndForwardsTheUavCalls) {
+  Trace trace;
+  ComPtr<DeviceContext> traced;
+  ASSERT_EQ(CreateTracingContext(context.Get(), &trace, traced.GetAddressOf()), S_OK);
+  StructuredBuffer list = MakeStructured(4, 4, BUFFER_UAV_FLAG_APPEND);
+  UnorderedAccessView* uavs[] = {list.uav.Get()};
+  const UINT counts[] = {3};
+  traced->OMSetRenderTargetsAndUnorderedAccessViews(KEEP_RENDER_TARGETS_AND_DEPTH_STENCIL, nullptr, nullptr, 2, 1,
+                                                    uavs, counts);
+  const UINT sentinel = 0;
+  ComPtr<Buffer> count = MakeBuffer(0, &sentinel, 4);
+  traced->CopyStructureCount(count.Get(), 0, list.uav.Get());
+  EXPECT_EQ(trace.Filter({"OMSetRenderTargetsAndUnorderedAccessViews", "CopyStructureCount"}),
+            (std::vector<std::string>{"OMSetRenderTargetsAndUnorderedAccessViews(-1, null, 2, 1, obj/3)",
+                                      "CopyStructureCount(obj, 0, obj)"}));
+  EXPECT_EQ(ReadBufferAs<uint32_t>(count.Get())[0], 3u);
+  EXPECT_EQ(BoundUav(2).Get(), list.uav.Get());
 }
 
 }  // namespace

@@ -246,6 +246,95 @@ TEST_F(UavTest, ByteAddressBufferAtomicsInPixelShader) {
   EXPECT_TRUE(words[3] >= 1000 && rects[0].Covers((words[3] - 1000) % 8, (words[3] - 1000) / 8)) << words[3];
 }
 
+// Typed UAVs next to each other from u1: a float texture stored to, and a
+// typed buffer (a storage texel buffer) counted into.
+TEST_F(UavTest, TypedTextureAndBufferUavsInPixelShader) {
+  TEXTURE2D_DESC desc{};
+  desc.Width = desc.Height = kSize;
+  desc.MipLevels = desc.ArraySize = 1;
+  desc.Format = DXGI_FORMAT_R32G32B32A32_FLOAT;
+  desc.SampleDesc.Count = 1;
+  desc.BindFlags = BIND_UNORDERED_ACCESS;
+  ComPtr<Texture2D> colors;
+  ASSERT_EQ(device->CreateTexture2D(&desc, nullptr, colors.GetAddressOf()), S_OK);
+  ComPtr<UnorderedAccessView> colorsUav;
+  ASSERT_EQ(device->CreateUnorderedAccessView(colors.Get(), nullptr, colorsUav.GetAddressOf()), S_OK);
+  const FLOAT clear[4] = {-1, -1, -1, -1};
+  context->ClearUnorderedAccessViewFloat(colorsUav.Get(), clear);
+  std::vector<uint32_t> zeros(kSize * kSize, 0);
+  ComPtr<Buffer> hits = MakeBuffer(BIND_UNORDERED_ACCESS, zeros.data(), kSize * kSize * 4);
+  UNORDERED_ACCESS_VIEW_DESC hitsDesc{};
+  hitsDesc.Format = DXGI_FORMAT_R32_UINT;
+  hitsDesc.ViewDimension = UAV_DIMENSION_BUFFER;
+  hitsDesc.Buffer = {0, kSize * kSize, 0};
+  ComPtr<UnorderedAccessView> hitsUav;
+  ASSERT_EQ(device->CreateUnorderedAccessView(hits.Get(), &hitsDesc, hitsUav.GetAddressOf()), S_OK);
+
+  RenderTargetView* rtvs[] = {target_.rtv.Get()};
+  UnorderedAccessView* uavs[] = {colorsUav.Get(), hitsUav.Get()};
+  context->OMSetRenderTargetsAndUnorderedAccessViews(1, rtvs, nullptr, 1, 2, uavs, nullptr);
+  ComPtr<PixelShader> ps = PS(R"(
+    RWTexture2D<float4> colors : register(u1);
+    RWBuffer<uint> hits : register(u2);
+    float4 main(float4 pos : SV_Position, nointerpolation float4 color : COLOR) : SV_Target {
+      uint2 p = uint2(pos.xy);
+      colors[p] = float4(p.x, p.y, color.r, 0.5);
+      InterlockedAdd(hits[p.y * 8 + p.x], 1);
+      return color;
+    })");
+  context->PSSetShader(ps.Get(), nullptr, 0);
+  DrawRects(kRects);
+  EXPECT_EQ(ReadBufferAs<uint32_t>(hits.Get()), CoverageCounts(kRects));
+  // Each pixel holds the last rectangle over it (draws are ordered), or the clear value.
+  std::vector<uint8_t> bytes = ReadTexture(colors.Get());
+  std::vector<float> texels(bytes.size() / 4);
+  std::memcpy(texels.data(), bytes.data(), bytes.size());
+  for (UINT y = 0; y < kSize; ++y)
+    for (UINT x = 0; x < kSize; ++x) {
+      std::vector<float> expected = {-1, -1, -1, -1};
+      for (size_t i = 0; i < kRects.size(); ++i)
+        if (kRects[i].Covers(x, y)) expected = {float(x), float(y), float(i), 0.5f};
+      const float* got = &texels[(y * kSize + x) * 4];
+      EXPECT_EQ(std::vector<float>(got, got + 4), expected) << x << "," << y;
+    }
+}
+
+// A pixel shader writes the arguments of the next draw: the indirect draw
+// waits for the writes (D3D11 orders them; synchronization validation checks
+// the barrier).
+TEST_F(UavTest, PixelShaderWritesIndirectArgumentsOfTheNextDraw) {
+  std::vector<uint32_t> zeros(4, 0);
+  ComPtr<Buffer> args = MakeBuffer(BIND_UNORDERED_ACCESS, zeros.data(), 16, USAGE_DEFAULT,
+                                   RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS | RESOURCE_MISC_DRAWINDIRECT_ARGS);
+  UNORDERED_ACCESS_VIEW_DESC desc{};
+  desc.Format = DXGI_FORMAT_R32_TYPELESS;
+  desc.ViewDimension = UAV_DIMENSION_BUFFER;
+  desc.Buffer = {0, 4, BUFFER_UAV_FLAG_RAW};
+  ComPtr<UnorderedAccessView> uav;
+  ASSERT_EQ(device->CreateUnorderedAccessView(args.Get(), &desc, uav.GetAddressOf()), S_OK);
+  BindUav(uav.Get());
+  ComPtr<PixelShader> writer = PS(R"(
+    RWByteAddressBuffer args : register(u1);
+    float4 main(float4 pos : SV_Position, nointerpolation float4 color : COLOR) : SV_Target {
+      args.InterlockedAdd(0, 1u);  // VertexCountPerInstance: one per fragment
+      args.InterlockedMax(4, 1u);  // InstanceCount
+      return color;
+    })");
+  context->PSSetShader(writer.Get(), nullptr, 0);
+  DrawRects({{0, 0, 3, 1}});  // 3 fragments: a 3-vertex draw
+
+  BindTarget(target_.rtv.Get(), kSize, kSize);
+  ComPtr<VertexShader> vs = VS(R"(float4 main(uint id : SV_VertexID) : SV_Position {
+      return float4(id == 1 ? 3 : -1, id == 2 ? -3 : 1, 0.5, 1); })");
+  ComPtr<PixelShader> green = PS("float4 main() : SV_Target { return float4(0, 1, 0, 1); }");
+  context->IASetInputLayout(nullptr);
+  context->VSSetShader(vs.Get(), nullptr, 0);
+  context->PSSetShader(green.Get(), nullptr, 0);
+  context->DrawInstancedIndirect(args.Get(), 0);
+  EXPECT_EQ(CountPixels(ReadTexture(target_.texture.Get()), kGreenPx), int(kSize * kSize));
+  EXPECT_EQ(ReadBufferAs<uint32_t>(args.Get()), (std::vector<uint32_t>{3, 1, 0, 0}));
+}
+
 // ---------------------------------------------------------------------------
 // Hidden counters
 

@@ -210,6 +210,17 @@ class ContextImpl final : public DeviceContext {
   // Sets a view's hidden counter on the GPU (pUAVInitialCounts); UINT(-1) keeps it.
   void SetUavCounter(UnorderedAccessViewImpl& view, UINT count);
   void BindRenderTargets(UINT count, RenderTargetView* const* views, DepthStencilView* depth);
+  // The resources in the output merger's slots after such a call: the new
+  // views, or the bound ones where NumRTVs / NumUAVs are KEEP_*.
+  struct OutputMergerSlots {
+    std::array<Resource*, SIMULTANEOUS_RENDER_TARGET_COUNT> targets{};
+    UINT targetCount = 0;  // NumRTVs, or the bound count: the first slot a UAV may take
+    Resource* depth = nullptr;
+    std::array<Resource*, PS_CS_UAV_REGISTER_COUNT> uavs{};
+    UINT firstUav = PS_CS_UAV_REGISTER_COUNT;  // the lowest UAV slot the call binds or keeps
+  };
+  OutputMergerSlots SlotsAfter(UINT numRtvs, RenderTargetView* const* rtvs, DepthStencilView* dsv, UINT uavStart,
+                               UINT numUavs, UnorderedAccessView* const* uavs) const;
   // Why OMSetRenderTargetsAndUnorderedAccessViews must ignore these arguments, or "".
   std::string CheckOutputMergerBinding(UINT numRtvs, RenderTargetView* const* rtvs, DepthStencilView* dsv,
                                        UINT uavStart, UINT numUavs, UnorderedAccessView* const* uavs) const;
@@ -224,9 +235,11 @@ class ContextImpl final : public DeviceContext {
   // `indirect`: the buffer a draw reads its arguments from, and how.
   const GraphicsPipeline* PrepareDraw(const char* call, TrackedResource* indirect = nullptr,
                                       const Access& indirectUse = uses::kIndirectArgs);
-  void TrackDrawResources(const GraphicsPipeline& pipeline, TrackedResource* indirect, const Access& indirectUse);
-  // A shader's use of UAV register `reg` (or of its hidden counter): a read and a write.
-  void UseUav(const RegisterSlot& reg, VkPipelineStageFlags2 stages);
+  void TrackDrawResources(const char* call, const GraphicsPipeline& pipeline, TrackedResource* indirect,
+                          const Access& indirectUse);
+  // A shader's use of UAV register `reg` (or of its hidden counter): a read and
+  // a write. `call` reports a counter used through a view that has none.
+  void UseUav(const char* call, const RegisterSlot& reg, VkPipelineStageFlags2 stages);
   // Finds the pipeline of pipelineKey_, or builds it from the bound state.
   const GraphicsPipeline* LookUpPipeline(const char* call);
   // The key's render-target formats and sample count, from the bound views.

@@ -236,28 +236,11 @@ void ContextImpl::OMSetRenderTargetsAndUnorderedAccessViews(UINT NumRTVs, Render
              "OMSetRenderTargetsAndUnorderedAccessViews");
 }
 
-namespace {
-
-// The output merger's slots after a call: the new views, or the bound ones for KEEP.
-struct OutputMergerSlots {
-  std::array<Resource*, SIMULTANEOUS_RENDER_TARGET_COUNT> targets{};
-  UINT targetCount = 0;  // NumRTVs, or the bound count: the first slot a UAV may take
-  Resource* depth = nullptr;
-  std::array<Resource*, PS_CS_UAV_REGISTER_COUNT> uavs{};
-};
-
-}  // namespace
-
-std::string ContextImpl::CheckOutputMergerBinding(UINT numRtvs, RenderTargetView* const* rtvs, DepthStencilView* dsv,
-                                                  UINT uavStart, UINT numUavs,
-                                                  UnorderedAccessView* const* uavs) const {
+ContextImpl::OutputMergerSlots ContextImpl::SlotsAfter(UINT numRtvs, RenderTargetView* const* rtvs,
+                                                      DepthStencilView* dsv, UINT uavStart, UINT numUavs,
+                                                      UnorderedAccessView* const* uavs) const {
   const bool keepTargets = numRtvs == KEEP_RENDER_TARGETS_AND_DEPTH_STENCIL;
   const bool keepUavs = numUavs == KEEP_UNORDERED_ACCESS_VIEWS;
-  if (!keepTargets && numRtvs > SIMULTANEOUS_RENDER_TARGET_COUNT)
-    return "NumRTVs (" + std::to_string(numRtvs) + ") exceeds SIMULTANEOUS_RENDER_TARGET_COUNT (8)";
-  if (!keepUavs && numUavs > 0 && (uavStart >= PS_CS_UAV_REGISTER_COUNT || numUavs > PS_CS_UAV_REGISTER_COUNT - uavStart))
-    return "UAVStartSlot (" + std::to_string(uavStart) + ") + NumUAVs (" + std::to_string(numUavs) +
-           ") exceeds the 8 UAV slots of feature level 11_0";
   OutputMergerSlots om;
   for (UINT i = 0; i < SIMULTANEOUS_RENDER_TARGET_COUNT; ++i) {
     if (keepTargets) {
@@ -270,18 +253,30 @@ std::string ContextImpl::CheckOutputMergerBinding(UINT numRtvs, RenderTargetView
   if (!keepTargets) om.targetCount = numRtvs;
   om.depth = keepTargets ? (depthStencil_ ? depthStencil_->resource() : nullptr)
                          : (dsv ? static_cast<DepthStencilViewImpl*>(dsv)->resource() : nullptr);
-  UINT firstUav = PS_CS_UAV_REGISTER_COUNT;
   for (UINT i = 0; i < PS_CS_UAV_REGISTER_COUNT; ++i) {
     if (keepUavs)
       om.uavs[i] = graphicsUavs_[i] ? graphicsUavs_[i]->resource() : nullptr;
     else if (i >= uavStart && i - uavStart < numUavs && uavs && uavs[i - uavStart])
       om.uavs[i] = static_cast<UnorderedAccessViewImpl*>(uavs[i - uavStart])->resource();
-    if (om.uavs[i] && firstUav == PS_CS_UAV_REGISTER_COUNT) firstUav = i;
+    if (om.uavs[i]) om.firstUav = std::min(om.firstUav, i);
   }
   // D3D11 checks the UAV range it is given, empty slots included.
-  if (!keepUavs && numUavs > 0) firstUav = std::min(firstUav, uavStart);
-  if (firstUav < om.targetCount)
-    return "UAVStartSlot (" + std::to_string(firstUav) + ") must be at least NumRTVs (" +
+  if (!keepUavs && numUavs > 0) om.firstUav = std::min(om.firstUav, uavStart);
+  return om;
+}
+
+std::string ContextImpl::CheckOutputMergerBinding(UINT numRtvs, RenderTargetView* const* rtvs, DepthStencilView* dsv,
+                                                  UINT uavStart, UINT numUavs,
+                                                  UnorderedAccessView* const* uavs) const {
+  if (numRtvs != KEEP_RENDER_TARGETS_AND_DEPTH_STENCIL && numRtvs > SIMULTANEOUS_RENDER_TARGET_COUNT)
+    return "NumRTVs (" + std::to_string(numRtvs) + ") exceeds SIMULTANEOUS_RENDER_TARGET_COUNT (8)";
+  if (numUavs != KEEP_UNORDERED_ACCESS_VIEWS && numUavs > 0 &&
+      (uavStart >= PS_CS_UAV_REGISTER_COUNT || numUavs > PS_CS_UAV_REGISTER_COUNT - uavStart))
+    return "UAVStartSlot (" + std::to_string(uavStart) + ") + NumUAVs (" + std::to_string(numUavs) +
+           ") exceeds the 8 UAV slots of feature level 11_0";
+  const OutputMergerSlots om = SlotsAfter(numRtvs, rtvs, dsv, uavStart, numUavs, uavs);
+  if (om.firstUav < om.targetCount)
+    return "UAVStartSlot (" + std::to_string(om.firstUav) + ") must be at least NumRTVs (" +
            std::to_string(om.targetCount) + "): render targets and UAVs share the output merger's 8 slots";
   for (UINT u = 0; u < PS_CS_UAV_REGISTER_COUNT; ++u) {
     if (!om.uavs[u]) continue;

@@ -434,6 +434,22 @@ TEST_F(UavTest, IncrementAndDecrementCounter) {
   EXPECT_EQ(ReadBufferAs<uint32_t>(slots.buffer.Get()), expected);
 }
 
+// D3D11's debug layer reports the draw and runs it; the counter reads 0.
+TEST_F(UavTest, CounterUseThroughAViewWithoutOneIsReported) {
+  StructuredBuffer plain = MakeStructured(4, 4, 0);
+  BindUav(plain.uav.Get());
+  ComPtr<PixelShader> ps = PS(R"(
+    AppendStructuredBuffer<uint> fragments : register(u1);
+    float4 main(float4 pos : SV_Position, nointerpolation float4 color : COLOR) : SV_Target {
+      fragments.Append(5);
+      return color;
+    })");
+  context->PSSetShader(ps.Get(), nullptr, 0);
+  DrawRects({{0, 0, 2, 1}});
+  EXPECT_TRUE(RefusedWith("Draw: the shader uses the hidden counter of UAV u1 (Append, Consume, IncrementCounter, "
+                          "DecrementCounter), but that view was created without BUFFER_UAV_FLAG_APPEND"));
+}
+
 // glslang drops a UAV used only through its counter, so its register is lost.
 TEST_F(UavTest, CounterOnlyUseIsRefusedWithTheReason) {
   std::vector<uint32_t> code = CompileHlsl(R"(

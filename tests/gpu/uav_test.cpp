@@ -461,6 +461,96 @@ TEST_F(UavTest, CounterOnlyUseIsRefusedWithTheReason) {
   EXPECT_TRUE(RefusedWith("CreateComputeShader: the hidden counter 'slots@count' is not linked to its UAV"));
 }
 
+// Order-independent transparency with per-pixel linked lists, end to end:
+// the build pass links one node per fragment (IncrementCounter for the node,
+// InterlockedExchange on the pixel's head), the resolve pass reads the lists
+// as shader resources, sorts each by depth and blends back to front. Colours
+// and alpha 0.5 keep every blend exact, so the CPU reference matches bit for bit.
+TEST_F(UavTest, PerPixelLinkedListsResolveToTheSortedBlend) {
+  struct Layer {
+    Rect rect;
+    float depth;
+    Color color;
+  };
+  // Drawn in this order, which is not the depth order.
+  const std::vector<Layer> layers = {{{0, 0, 6, 6}, 0.5f, {1, 0, 0, 0.5f}},
+                                     {{2, 2, 8, 8}, 0.25f, {0, 1, 0, 0.5f}},
+                                     {{1, 3, 7, 5}, 0.75f, {0, 0, 1, 0.5f}},
+                                     {{4, 0, 8, 4}, 0.125f, {1, 1, 1, 0.5f}}};
+  UintTexture heads = MakeUintTexture(0xffffffffu);
+  StructuredBuffer nodes = MakeStructured(kSize * kSize * 4, 24, BUFFER_UAV_FLAG_COUNTER);
+  RenderTargetView* rtvs[] = {target_.rtv.Get()};
+  UnorderedAccessView* uavs[] = {heads.uav.Get(), nodes.uav.Get()};
+  const UINT counts[] = {UINT(-1), 0};
+  context->OMSetRenderTargetsAndUnorderedAccessViews(1, rtvs, nullptr, 1, 2, uavs, counts);
+  ComPtr<PixelShader> build = PS(R"(
+    struct Node { float4 color; float depth; uint next; };
+    RWTexture2D<uint> heads : register(u1);
+    RWStructuredBuffer<Node> nodes : register(u2);
+    float4 main(float4 pos : SV_Position, nointerpolation float4 color : COLOR) : SV_Target {
+      uint node = nodes.IncrementCounter();
+      uint next;
+      InterlockedExchange(heads[uint2(pos.xy)], node, next);
+      Node n; n.color = color; n.depth = pos.z; n.next = next;
+      nodes[node] = n;
+      return color;
+    })");
+  context->PSSetShader(build.Get(), nullptr, 0);
+  for (const Layer& l : layers)
+    DrawVertices(Quad(float(l.rect.x0), float(l.rect.y0), float(l.rect.x1), float(l.rect.y1), l.color, kSize, kSize,
+                      l.depth));
+
+  Target resolved = MakeRenderTarget(kSize, kSize, DXGI_FORMAT_R32G32B32A32_FLOAT);
+  BindTarget(resolved.rtv.Get(), kSize, kSize);  // unbinds the UAVs
+  ComPtr<ShaderResourceView> headsSrv, nodesSrv;
+  ASSERT_EQ(device->CreateShaderResourceView(heads.texture.Get(), nullptr, headsSrv.GetAddressOf()), S_OK);
+  ASSERT_EQ(device->CreateShaderResourceView(nodes.buffer.Get(), nullptr, nodesSrv.GetAddressOf()), S_OK);
+  ShaderResourceView* srvs[] = {headsSrv.Get(), nodesSrv.Get()};
+  context->PSSetShaderResources(0, 2, srvs);
+  ComPtr<VertexShader> fullScreen = VS(R"(float4 main(uint id : SV_VertexID) : SV_Position {
+      return float4(id == 1 ? 3 : -1, id == 2 ? -3 : 1, 0.5, 1); })");
+  ComPtr<PixelShader> resolve = PS(R"(
+    struct Node { float4 color; float depth; uint next; };
+    Texture2D<uint> heads : register(t0);
+    StructuredBuffer<Node> nodes : register(t1);
+    float4 main(float4 pos : SV_Position) : SV_Target {
+      Node list[8];
+      uint count = 0;
+      for (uint at = heads.Load(int3(pos.xy, 0)); at != 0xffffffff && count < 8; at = nodes[at].next)
+        list[count++] = nodes[at];
+      for (uint i = 1; i < count; ++i)  // insertion sort, farthest first
+        for (uint j = i; j > 0 && list[j - 1].depth < list[j].depth; --j) {
+          Node t = list[j]; list[j] = list[j - 1]; list[j - 1] = t;
+        }
+      float3 c = float3(0, 0, 0);
+      for (uint k = 0; k < count; ++k) c = c * (1 - list[k].color.a) + list[k].color.rgb * list[k].color.a;
+      return float4(c, count);
+    })");
+  context->IASetInputLayout(nullptr);
+  context->VSSetShader(fullScreen.Get(), nullptr, 0);
+  context->PSSetShader(resolve.Get(), nullptr, 0);
+  context->Draw(3, 0);
+
+  std::vector<uint8_t> bytes = ReadTexture(resolved.texture.Get());
+  std::vector<float> texels(bytes.size() / 4);
+  std::memcpy(texels.data(), bytes.data(), bytes.size());
+  for (UINT y = 0; y < kSize; ++y)
+    for (UINT x = 0; x < kSize; ++x) {
+      std::vector<Layer> over;
+      for (const Layer& l : layers)
+        if (l.rect.Covers(x, y)) over.push_back(l);
+      std::sort(over.begin(), over.end(), [](const Layer& a, const Layer& b) { return a.depth > b.depth; });
+      std::vector<float> expected = {0, 0, 0, float(over.size())};
+      for (const Layer& l : over) {
+        expected[0] = expected[0] * (1 - l.color.a) + l.color.r * l.color.a;
+        expected[1] = expected[1] * (1 - l.color.a) + l.color.g * l.color.a;
+        expected[2] = expected[2] * (1 - l.color.a) + l.color.b * l.color.a;
+      }
+      const float* got = &texels[(y * kSize + x) * 4];
+      EXPECT_EQ(std::vector<float>(got, got + 4), expected) << x << "," << y;
+    }
+}
+
 // ---------------------------------------------------------------------------
 // [earlydepthstencil]
 

@@ -703,6 +703,33 @@ INSTANTIATE_TEST_SUITE_P(
                          "a resource cannot be a render target and an unordered access view at once"}),
     [](const ::testing::TestParamInfo<OutputMergerCase>& info) { return std::string(info.param.name); });
 
+// The views a call keeps meet the rules too: new render targets may neither
+// reach a kept UAV's slot nor be a kept UAV's resource.
+TEST_F(UavTest, KeptViewsAreCheckedAgainstNewOnes) {
+  TEXTURE2D_DESC desc{};
+  desc.Width = desc.Height = kSize;
+  desc.MipLevels = desc.ArraySize = 1;
+  desc.Format = DXGI_FORMAT_R8G8B8A8_UNORM;
+  desc.SampleDesc.Count = 1;
+  desc.BindFlags = BIND_RENDER_TARGET | BIND_UNORDERED_ACCESS;
+  ComPtr<Texture2D> both;
+  ASSERT_EQ(device->CreateTexture2D(&desc, nullptr, both.GetAddressOf()), S_OK);
+  ComPtr<RenderTargetView> bothRtv;
+  ComPtr<UnorderedAccessView> bothUav;
+  ASSERT_EQ(device->CreateRenderTargetView(both.Get(), nullptr, bothRtv.GetAddressOf()), S_OK);
+  ASSERT_EQ(device->CreateUnorderedAccessView(both.Get(), nullptr, bothUav.GetAddressOf()), S_OK);
+  BindUav(bothUav.Get());
+
+  RenderTargetView* two[] = {target_.rtv.Get(), nullptr};
+  context->OMSetRenderTargetsAndUnorderedAccessViews(2, two, nullptr, 0, KEEP_UNORDERED_ACCESS_VIEWS, nullptr, nullptr);
+  EXPECT_TRUE(RefusedWith("UAVStartSlot (1) must be at least NumRTVs (2)"));
+  RenderTargetView* same[] = {bothRtv.Get()};
+  context->OMSetRenderTargetsAndUnorderedAccessViews(1, same, nullptr, 0, KEEP_UNORDERED_ACCESS_VIEWS, nullptr, nullptr);
+  EXPECT_TRUE(RefusedWith("the resource of UAV slot 1 is also render target 0"));
+  EXPECT_EQ(BoundTarget0().Get(), target_.rtv.Get());
+  EXPECT_EQ(BoundUav(1).Get(), bothUav.Get());
+}
+
 TEST_F(UavTest, BindingAUavUnbindsItsResourceFromShaderResourceSlots) {
   StructuredBuffer buffer = MakeStructured(4, 4, 0);
   ComPtr<ShaderResourceView> srv;

@@ -220,11 +220,11 @@ TEST_F(UavTest, ByteAddressBufferAtomicsInPixelShader) {
     RWByteAddressBuffer raw : register(u1);
     float4 main(float4 pos : SV_Position, nointerpolation float4 color : COLOR) : SV_Target {
       uint2 p = uint2(pos.xy);
-      raw.InterlockedAdd(0, 1u);                      // fragments (glslang needs the u: see README)
+      raw.InterlockedAdd(0, 1);                       // fragments
       raw.InterlockedMax(4, p.y * 8 + p.x);           // the last pixel index reached
       raw.InterlockedOr(8, 1u << (p.x + 8 * (p.y & 3)));  // rows y and y + 4 share bits
       uint previous;
-      raw.InterlockedCompareExchange(12, 0u, 1000 + p.y * 8 + p.x, previous);  // one fragment wins
+      raw.InterlockedCompareExchange(12, 0, 1000 + p.y * 8 + p.x, previous);  // one fragment wins
       return color;
     })");
   context->PSSetShader(ps.Get(), nullptr, 0);

@@ -109,13 +109,16 @@ void ContextImpl::SetShaderResources(ShaderStage stage, UINT start, UINT count,
   auto& slots = stages_[static_cast<uint32_t>(stage)].shaderResources;
   for (UINT i = 0; i < count && start + i < slots.size(); ++i) {
     auto* view = static_cast<ShaderResourceViewImpl*>(views ? views[i] : nullptr);
-    // A resource bound for writing cannot be bound for reading: D3D11 binds NULL.
-    if (view && IsBoundAsUav(view->resource()))
-      device_->gpu().Report(MESSAGE_CATEGORY_STATE_SETTING, MESSAGE_SEVERITY_WARNING,
-                            std::string(StagePrefix(stage)) + "SetShaderResources: the resource of slot " +
-                                std::to_string(start + i) +
-                                " is bound as an unordered access view; forcing the slot to NULL");
-    if (view && IsBoundForWriting(view->resource())) view = nullptr;
+    // A resource bound for writing cannot be bound for reading: D3D11 binds NULL
+    // (and its debug layer warns about UAVs).
+    if (view && IsBoundForWriting(view->resource())) {
+      if (IsBoundAsUav(view->resource()))
+        device_->gpu().Report(MESSAGE_CATEGORY_STATE_SETTING, MESSAGE_SEVERITY_WARNING,
+                              std::string(StagePrefix(stage)) + "SetShaderResources: the resource of slot " +
+                                  std::to_string(start + i) +
+                                  " is bound as an unordered access view; forcing the slot to NULL");
+      view = nullptr;
+    }
     slots[start + i] = view;
   }
   descriptorsDirty_ = true;

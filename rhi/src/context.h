@@ -91,6 +91,13 @@ class ContextImpl final : public DeviceContext {
 
   void OMSetRenderTargets(UINT NumViews, RenderTargetView* const* ppRenderTargetViews,
                           DepthStencilView* pDepthStencilView) override;
+  void OMSetRenderTargetsAndUnorderedAccessViews(UINT NumRTVs, RenderTargetView* const* ppRenderTargetViews,
+                                                 DepthStencilView* pDepthStencilView, UINT UAVStartSlot, UINT NumUAVs,
+                                                 UnorderedAccessView* const* ppUnorderedAccessViews,
+                                                 const UINT* pUAVInitialCounts) override;
+  void OMGetRenderTargetsAndUnorderedAccessViews(UINT NumRTVs, RenderTargetView** ppRenderTargetViews,
+                                                 DepthStencilView** ppDepthStencilView, UINT UAVStartSlot,
+                                                 UINT NumUAVs, UnorderedAccessView** ppUnorderedAccessViews) override;
   void OMSetBlendState(BlendState* pBlendState, const FLOAT BlendFactor[4], UINT SampleMask) override;
   void OMSetDepthStencilState(DepthStencilState* pDepthStencilState, UINT StencilRef) override;
 
@@ -122,6 +129,7 @@ class ContextImpl final : public DeviceContext {
                              Resource* pSrcResource, UINT SrcSubresource, const BOX* pSrcBox) override;
   void ResolveSubresource(Resource* pDstResource, UINT DstSubresource, Resource* pSrcResource,
                           UINT SrcSubresource, DXGI_FORMAT Format) override;
+  void CopyStructureCount(Buffer* pDstBuffer, UINT DstAlignedByteOffset, UnorderedAccessView* pSrcView) override;
 
   void Begin(Asynchronous* pAsync) override;
   void End(Asynchronous* pAsync) override;
@@ -185,19 +193,53 @@ class ContextImpl final : public DeviceContext {
   void SetShaderResources(ShaderStage stage, UINT start, UINT count, ShaderResourceView* const* views);
   void SetSamplers(ShaderStage stage, UINT start, UINT count, SamplerState* const* samplers);
   void EmitBarriers();
-  // D3D11's hazard rule: a resource bound for writing leaves every read binding.
-  void UnbindFromReads(Resource* resource);
+  using UavSlots = std::array<Bound<UnorderedAccessViewImpl>, PS_CS_UAV_REGISTER_COUNT>;
+  // D3D11's hazard rule: a resource bound for writing leaves every read
+  // binding, and every UAV slot (of either pipeline). `call`, when given, names
+  // the UAV binding call that reports each shader-resource slot it empties (the
+  // D3D11 debug layer's "Forcing ... to NULL" warning).
+  void UnbindFromReads(Resource* resource, const char* call = nullptr);
+  // Compute UAVs for the compute stage, output-merger UAVs for the graphics stages.
+  const UavSlots& UavsOf(ShaderStage stage) const {
+    return stage == ShaderStage::Compute ? computeUavs_ : graphicsUavs_;
+  }
+  // Binds `count` views from `start`; the other slots are emptied when `unbindOthers`
+  // (the output merger's rule), else kept (CSSetUnorderedAccessViews).
+  void BindUavs(UavSlots& slots, UINT start, UINT count, UnorderedAccessView* const* views,
+                const UINT* initialCounts, bool unbindOthers, const char* call);
+  // Sets a view's hidden counter on the GPU (pUAVInitialCounts); UINT(-1) keeps it.
+  void SetUavCounter(UnorderedAccessViewImpl& view, UINT count);
+  void BindRenderTargets(UINT count, RenderTargetView* const* views, DepthStencilView* depth);
+  // The resources in the output merger's slots after such a call: the new
+  // views, or the bound ones where NumRTVs / NumUAVs are KEEP_*.
+  struct OutputMergerSlots {
+    std::array<Resource*, SIMULTANEOUS_RENDER_TARGET_COUNT> targets{};
+    UINT targetCount = 0;  // NumRTVs, or the bound count: the first slot a UAV may take
+    Resource* depth = nullptr;
+    std::array<Resource*, PS_CS_UAV_REGISTER_COUNT> uavs{};
+    UINT firstUav = PS_CS_UAV_REGISTER_COUNT;  // the lowest UAV slot the call binds or keeps
+  };
+  OutputMergerSlots SlotsAfter(UINT numRtvs, RenderTargetView* const* rtvs, DepthStencilView* dsv, UINT uavStart,
+                               UINT numUavs, UnorderedAccessView* const* uavs) const;
+  // Why OMSetRenderTargetsAndUnorderedAccessViews must ignore these arguments, or "".
+  std::string CheckOutputMergerBinding(UINT numRtvs, RenderTargetView* const* rtvs, DepthStencilView* dsv,
+                                       UINT uavStart, UINT numUavs, UnorderedAccessView* const* uavs) const;
   bool IsBoundForWriting(Resource* resource) const;
   // Render targets and depth-stencil views are texture-only: a buffer is written
   // only through stream output and UAVs (the IA setters' check, on every draw).
   bool IsBoundForWriting(const BufferImpl* buffer) const;
   bool IsBoundForStreamOutOrUav(const Resource* resource) const;
+  bool IsBoundAsUav(const Resource* resource) const;
 
   // Draw path (context_draw.cpp).
   // `indirect`: the buffer a draw reads its arguments from, and how.
   const GraphicsPipeline* PrepareDraw(const char* call, TrackedResource* indirect = nullptr,
                                       const Access& indirectUse = uses::kIndirectArgs);
-  void TrackDrawResources(const GraphicsPipeline& pipeline, TrackedResource* indirect, const Access& indirectUse);
+  void TrackDrawResources(const char* call, const GraphicsPipeline& pipeline, TrackedResource* indirect,
+                          const Access& indirectUse);
+  // A shader's use of UAV register `reg` (or of its hidden counter): a read and
+  // a write. `call` reports a counter used through a view that has none.
+  void UseUav(const char* call, const RegisterSlot& reg, VkPipelineStageFlags2 stages);
   // Finds the pipeline of pipelineKey_, or builds it from the bound state.
   const GraphicsPipeline* LookUpPipeline(const char* call);
   // The key's render-target formats and sample count, from the bound views.
@@ -227,7 +269,8 @@ class ContextImpl final : public DeviceContext {
   IndexBufferBinding indexBuffer_;
   PRIMITIVE_TOPOLOGY topology_ = PRIMITIVE_TOPOLOGY_UNDEFINED;
   std::array<StageState, kShaderStageCount> stages_;
-  std::array<Bound<UnorderedAccessViewImpl>, PS_CS_UAV_REGISTER_COUNT> computeUavs_;
+  UavSlots computeUavs_;
+  UavSlots graphicsUavs_;  // OMSetRenderTargetsAndUnorderedAccessViews
   std::array<StreamOutTarget, SO_BUFFER_SLOT_COUNT> streamOut_;
   Bound<RasterizerStateImpl> rasterizer_;
   std::vector<VIEWPORT> viewports_;

@@ -132,7 +132,7 @@ const GraphicsPipeline* ContextImpl::PrepareDraw(const char* call, TrackedResour
   const GraphicsPipeline* pipeline = currentPipeline_ ? currentPipeline_ : LookUpPipeline(call);
   if (!pipeline) return nullptr;
   currentPipeline_ = pipeline;
-  TrackDrawResources(*pipeline, indirect, indirectUse);
+  TrackDrawResources(call, *pipeline, indirect, indirectUse);
   BindGraphicsState(*pipeline);
   return pipeline;
 }
@@ -159,7 +159,7 @@ const GraphicsPipeline* ContextImpl::LookUpPipeline(const char* call) {
   return pipeline;
 }
 
-void ContextImpl::TrackDrawResources(const GraphicsPipeline& pipeline, TrackedResource* indirect,
+void ContextImpl::TrackDrawResources(const char* call, const GraphicsPipeline& pipeline, TrackedResource* indirect,
                                      const Access& indirectUse) {
   for (uint32_t slots = pipeline.vertexSlots; slots; slots &= slots - 1)
     if (BufferImpl* buffer = vertexBuffers_[std::countr_zero(slots)].buffer.Get()) Use(*buffer, uses::kVertexBuffer);
@@ -174,6 +174,8 @@ void ContextImpl::TrackDrawResources(const GraphicsPipeline& pipeline, TrackedRe
     } else if (reg.registerClass == RegisterClass::ShaderResource && reg.slot < stage.shaderResources.size()) {
       if (ShaderResourceViewImpl* view = stage.shaderResources[reg.slot].Get())
         Use(view->tracked(), {stageFlags, VK_ACCESS_2_SHADER_READ_BIT, false});
+    } else if (reg.registerClass == RegisterClass::UnorderedAccess) {
+      UseUav(call, reg, stageFlags);
     }
   }
   if (pipeline.streamOutput) PrepareStreamOutTargets();
@@ -188,6 +190,26 @@ void ContextImpl::TrackDrawResources(const GraphicsPipeline& pipeline, TrackedRe
   if (restart) {
     ++renderingInstance_;
     BeginRendering();
+  }
+}
+
+// D3D11 orders UAV accesses of one draw or dispatch after those of the
+// previous ones: every use is a write, so the next use waits for it (and a
+// draw after a UAV-writing draw starts a new rendering instance for the barrier).
+void ContextImpl::UseUav(const char* call, const RegisterSlot& reg, VkPipelineStageFlags2 stages) {
+  if (reg.slot >= PS_CS_UAV_REGISTER_COUNT) return;
+  UnorderedAccessViewImpl* view = UavsOf(reg.stage)[reg.slot].Get();
+  if (!view) return;
+  const Access use{stages, VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT, true};
+  if (!reg.counter) {
+    Use(view->tracked(), use);
+  } else if (BufferImpl* counter = view->counter()) {
+    Use(*counter, use);
+  } else {
+    // As the D3D11 debug layer, report and draw: the counter reads 0 and its updates are lost.
+    ReportDrawError(std::string(call) + ": the shader uses the hidden counter of UAV u" + std::to_string(reg.slot) +
+                    " (Append, Consume, IncrementCounter, DecrementCounter), but that view was created without "
+                    "BUFFER_UAV_FLAG_APPEND or BUFFER_UAV_FLAG_COUNTER");
   }
 }
 
@@ -322,8 +344,17 @@ void ContextImpl::WriteViewDescriptor(size_t i, const RegisterSlot& reg, const S
   const ViewTarget* view = nullptr;
   if (reg.registerClass == RegisterClass::ShaderResource) {
     if (reg.slot < stage.shaderResources.size()) view = stage.shaderResources[reg.slot].Get();
-  } else if (reg.stage == ShaderStage::Compute && reg.slot < computeUavs_.size()) {
-    view = computeUavs_[reg.slot].Get();
+  } else if (reg.slot < PS_CS_UAV_REGISTER_COUNT) {
+    const UnorderedAccessViewImpl* uav = UavsOf(reg.stage)[reg.slot].Get();
+    if (reg.counter) {
+      // The UAV's hidden counter; a UAV without one binds a null buffer.
+      const BufferImpl* counter = uav ? uav->counter() : nullptr;
+      write.pBufferInfo = &buffers[i];
+      buffers[i] = counter ? VkDescriptorBufferInfo{counter->handle(), counter->baseOffset(), sizeof(UINT)}
+                           : VkDescriptorBufferInfo{VK_NULL_HANDLE, 0, VK_WHOLE_SIZE};
+      return;
+    }
+    view = uav;
   }
   const ViewTarget* bufferView = view && view->buffer() ? view : nullptr;
   switch (write.descriptorType) {
@@ -442,10 +473,8 @@ const ComputePipeline* ContextImpl::PrepareDispatch(const char* call) {
         Use(*cb, {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_UNIFORM_READ_BIT, false});
     } else if (reg.registerClass == RegisterClass::ShaderResource && reg.slot < stage.shaderResources.size()) {
       if (ShaderResourceViewImpl* view = stage.shaderResources[reg.slot].Get()) Use(view->tracked(), read);
-    } else if (reg.registerClass == RegisterClass::UnorderedAccess && reg.slot < computeUavs_.size()) {
-      if (UnorderedAccessViewImpl* view = computeUavs_[reg.slot].Get())
-        Use(view->tracked(), {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                              VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT, true});
+    } else if (reg.registerClass == RegisterClass::UnorderedAccess) {
+      UseUav(call, reg, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
     }
   }
   return pipeline;

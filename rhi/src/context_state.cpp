@@ -12,6 +12,16 @@
 
 namespace rhi::vk {
 
+namespace {
+
+// The D3D11 method prefix of a stage ("PS" of PSSetShaderResources).
+const char* StagePrefix(ShaderStage stage) {
+  constexpr const char* kPrefixes[] = {"VS", "HS", "DS", "GS", "PS", "CS"};
+  return kPrefixes[static_cast<uint32_t>(stage)];
+}
+
+}  // namespace
+
 ContextImpl::ContextImpl(DeviceImpl* device)
     : device_(device), queries_(std::make_unique<QueryTracker>(device->gpu())) {
   queries_->statistics = SupportedStatistics(device->gpu().Caps());
@@ -99,8 +109,16 @@ void ContextImpl::SetShaderResources(ShaderStage stage, UINT start, UINT count,
   auto& slots = stages_[static_cast<uint32_t>(stage)].shaderResources;
   for (UINT i = 0; i < count && start + i < slots.size(); ++i) {
     auto* view = static_cast<ShaderResourceViewImpl*>(views ? views[i] : nullptr);
-    // A resource bound for writing cannot be bound for reading: D3D11 binds NULL.
-    if (view && IsBoundForWriting(view->resource())) view = nullptr;
+    // A resource bound for writing cannot be bound for reading: D3D11 binds NULL
+    // (and its debug layer warns about UAVs).
+    if (view && IsBoundForWriting(view->resource())) {
+      if (IsBoundAsUav(view->resource()))
+        device_->gpu().Report(MESSAGE_CATEGORY_STATE_SETTING, MESSAGE_SEVERITY_WARNING,
+                              std::string(StagePrefix(stage)) + "SetShaderResources: the resource of slot " +
+                                  std::to_string(start + i) +
+                                  " is bound as an unordered access view; forcing the slot to NULL");
+      view = nullptr;
+    }
     slots[start + i] = view;
   }
   descriptorsDirty_ = true;
@@ -114,13 +132,44 @@ void ContextImpl::SetSamplers(ShaderStage stage, UINT start, UINT count, Sampler
 }
 
 void ContextImpl::CSSetUnorderedAccessViews(UINT StartSlot, UINT NumUAVs, UnorderedAccessView* const* ppUAVs,
-                                            const UINT*) {
-  for (UINT i = 0; i < NumUAVs && StartSlot + i < computeUavs_.size(); ++i) {
-    auto* view = static_cast<UnorderedAccessViewImpl*>(ppUAVs ? ppUAVs[i] : nullptr);
-    if (view) UnbindFromReads(view->resource());
-    computeUavs_[StartSlot + i] = view;
+                                            const UINT* pUAVInitialCounts) {
+  if (StartSlot >= PS_CS_UAV_REGISTER_COUNT || NumUAVs > PS_CS_UAV_REGISTER_COUNT - StartSlot) {
+    ReportDrawError("CSSetUnorderedAccessViews: StartSlot (" + std::to_string(StartSlot) + ") + NumUAVs (" +
+                    std::to_string(NumUAVs) + ") exceeds the " + std::to_string(PS_CS_UAV_REGISTER_COUNT) +
+                    " UAV slots of feature level 11_0; the call is ignored");
+    return;
+  }
+  BindUavs(computeUavs_, StartSlot, NumUAVs, ppUAVs, pUAVInitialCounts, false, "CSSetUnorderedAccessViews");
+}
+
+void ContextImpl::BindUavs(UavSlots& slots, UINT start, UINT count, UnorderedAccessView* const* views,
+                           const UINT* initialCounts, bool unbindOthers, const char* call) {
+  auto viewAt = [&](UINT slot) {
+    const bool inRange = slot >= start && slot - start < count;
+    return static_cast<UnorderedAccessViewImpl*>(inRange && views ? views[slot - start] : nullptr);
+  };
+  // Unbind every new view's resource first, so that views of one resource in
+  // two slots of this call both stay bound.
+  for (UINT slot = start; slot < start + count; ++slot)
+    if (UnorderedAccessViewImpl* view = viewAt(slot)) UnbindFromReads(view->resource(), call);
+  for (UINT slot = 0; slot < slots.size(); ++slot) {
+    const bool inRange = slot >= start && slot - start < count;
+    if (!inRange && !unbindOthers) continue;
+    UnorderedAccessViewImpl* view = viewAt(slot);
+    slots[slot] = view;
+    if (view && initialCounts) SetUavCounter(*view, initialCounts[slot - start]);
   }
   descriptorsDirty_ = true;
+}
+
+void ContextImpl::SetUavCounter(UnorderedAccessViewImpl& view, UINT count) {
+  BufferImpl* counter = view.counter();
+  if (!counter || count == UINT(-1)) return;
+  // A fill is a transfer: outside rendering, after the shaders that used the count.
+  EndRendering();
+  Use(*counter, uses::kTransferWrite);
+  FlushBarriers();
+  vkCmdFillBuffer(Commands(), counter->handle(), counter->baseOffset(), sizeof(UINT), count);
 }
 
 void ContextImpl::SOSetTargets(UINT NumBuffers, Buffer* const* ppSOTargets, const UINT* pOffsets) {
@@ -164,15 +213,109 @@ void ContextImpl::RSSetScissorRects(UINT NumRects, const RECT* pRects) {
   dynamicDirty_.viewport = true;
 }
 
+// D3D11 runs OMSetRenderTargets as OMSetRenderTargetsAndUnorderedAccessViews
+// with no UAVs from slot NumViews on: the pixel-shader UAVs are unbound.
 void ContextImpl::OMSetRenderTargets(UINT NumViews, RenderTargetView* const* ppRenderTargetViews,
                                      DepthStencilView* pDepthStencilView) {
+  OMSetRenderTargetsAndUnorderedAccessViews(NumViews, ppRenderTargetViews, pDepthStencilView, NumViews, 0, nullptr,
+                                            nullptr);
+}
+
+void ContextImpl::OMSetRenderTargetsAndUnorderedAccessViews(UINT NumRTVs, RenderTargetView* const* ppRenderTargetViews,
+                                                            DepthStencilView* pDepthStencilView, UINT UAVStartSlot,
+                                                            UINT NumUAVs,
+                                                            UnorderedAccessView* const* ppUnorderedAccessViews,
+                                                            const UINT* pUAVInitialCounts) {
+  if (std::string reason = CheckOutputMergerBinding(NumRTVs, ppRenderTargetViews, pDepthStencilView, UAVStartSlot,
+                                                    NumUAVs, ppUnorderedAccessViews);
+      !reason.empty()) {
+    ReportDrawError("OMSetRenderTargetsAndUnorderedAccessViews: " + reason + "; the call is ignored");
+    return;
+  }
+  if (NumRTVs != KEEP_RENDER_TARGETS_AND_DEPTH_STENCIL)
+    BindRenderTargets(NumRTVs, ppRenderTargetViews, pDepthStencilView);
+  if (NumUAVs != KEEP_UNORDERED_ACCESS_VIEWS)
+    BindUavs(graphicsUavs_, UAVStartSlot, NumUAVs, ppUnorderedAccessViews, pUAVInitialCounts, true,
+             "OMSetRenderTargetsAndUnorderedAccessViews");
+}
+
+ContextImpl::OutputMergerSlots ContextImpl::SlotsAfter(UINT numRtvs, RenderTargetView* const* rtvs,
+                                                      DepthStencilView* dsv, UINT uavStart, UINT numUavs,
+                                                      UnorderedAccessView* const* uavs) const {
+  const bool keepTargets = numRtvs == KEEP_RENDER_TARGETS_AND_DEPTH_STENCIL;
+  const bool keepUavs = numUavs == KEEP_UNORDERED_ACCESS_VIEWS;
+  OutputMergerSlots om;
   for (UINT i = 0; i < SIMULTANEOUS_RENDER_TARGET_COUNT; ++i) {
-    auto* view = i < NumViews && ppRenderTargetViews ? static_cast<RenderTargetViewImpl*>(ppRenderTargetViews[i])
-                                                     : nullptr;
+    if (keepTargets) {
+      om.targets[i] = renderTargets_[i] ? renderTargets_[i]->resource() : nullptr;
+      if (om.targets[i]) om.targetCount = i + 1;
+    } else if (i < numRtvs && rtvs && rtvs[i]) {
+      om.targets[i] = static_cast<RenderTargetViewImpl*>(rtvs[i])->resource();
+    }
+  }
+  if (!keepTargets) om.targetCount = numRtvs;
+  om.depth = keepTargets ? (depthStencil_ ? depthStencil_->resource() : nullptr)
+                         : (dsv ? static_cast<DepthStencilViewImpl*>(dsv)->resource() : nullptr);
+  for (UINT i = 0; i < PS_CS_UAV_REGISTER_COUNT; ++i) {
+    if (keepUavs)
+      om.uavs[i] = graphicsUavs_[i] ? graphicsUavs_[i]->resource() : nullptr;
+    else if (i >= uavStart && i - uavStart < numUavs && uavs && uavs[i - uavStart])
+      om.uavs[i] = static_cast<UnorderedAccessViewImpl*>(uavs[i - uavStart])->resource();
+    if (om.uavs[i]) om.firstUav = std::min(om.firstUav, i);
+  }
+  // D3D11 checks the UAV range it is given, empty slots included.
+  if (!keepUavs && numUavs > 0) om.firstUav = std::min(om.firstUav, uavStart);
+  return om;
+}
+
+std::string ContextImpl::CheckOutputMergerBinding(UINT numRtvs, RenderTargetView* const* rtvs, DepthStencilView* dsv,
+                                                  UINT uavStart, UINT numUavs,
+                                                  UnorderedAccessView* const* uavs) const {
+  if (numRtvs != KEEP_RENDER_TARGETS_AND_DEPTH_STENCIL && numRtvs > SIMULTANEOUS_RENDER_TARGET_COUNT)
+    return "NumRTVs (" + std::to_string(numRtvs) + ") exceeds SIMULTANEOUS_RENDER_TARGET_COUNT (8)";
+  if (numUavs != KEEP_UNORDERED_ACCESS_VIEWS && numUavs > 0 &&
+      (uavStart >= PS_CS_UAV_REGISTER_COUNT || numUavs > PS_CS_UAV_REGISTER_COUNT - uavStart))
+    return "UAVStartSlot (" + std::to_string(uavStart) + ") + NumUAVs (" + std::to_string(numUavs) +
+           ") exceeds the 8 UAV slots of feature level 11_0";
+  const OutputMergerSlots om = SlotsAfter(numRtvs, rtvs, dsv, uavStart, numUavs, uavs);
+  if (om.firstUav < om.targetCount)
+    return "UAVStartSlot (" + std::to_string(om.firstUav) + ") must be at least NumRTVs (" +
+           std::to_string(om.targetCount) + "): render targets and UAVs share the output merger's 8 slots";
+  for (UINT u = 0; u < PS_CS_UAV_REGISTER_COUNT; ++u) {
+    if (!om.uavs[u]) continue;
+    for (UINT t = 0; t < SIMULTANEOUS_RENDER_TARGET_COUNT; ++t)
+      if (om.targets[t] == om.uavs[u])
+        return "the resource of UAV slot " + std::to_string(u) + " is also render target " + std::to_string(t) +
+               "; a resource cannot be a render target and an unordered access view at once";
+    if (om.depth == om.uavs[u])
+      return "the resource of UAV slot " + std::to_string(u) +
+             " is also the depth-stencil view's; a resource cannot be written through both at once";
+  }
+  return "";
+}
+
+void ContextImpl::OMGetRenderTargetsAndUnorderedAccessViews(UINT NumRTVs, RenderTargetView** ppRenderTargetViews,
+                                                            DepthStencilView** ppDepthStencilView, UINT UAVStartSlot,
+                                                            UINT NumUAVs, UnorderedAccessView** ppUnorderedAccessViews) {
+  auto get = [](auto* object) {
+    if (object) object->AddRef();
+    return object;
+  };
+  for (UINT i = 0; ppRenderTargetViews && i < NumRTVs; ++i)
+    ppRenderTargetViews[i] = i < renderTargets_.size() ? get(renderTargets_[i].Get()) : nullptr;
+  if (ppDepthStencilView) *ppDepthStencilView = get(depthStencil_.Get());
+  for (UINT i = 0; ppUnorderedAccessViews && i < NumUAVs; ++i)
+    ppUnorderedAccessViews[i] = UAVStartSlot + i < graphicsUavs_.size() ? get(graphicsUavs_[UAVStartSlot + i].Get())
+                                                                        : nullptr;
+}
+
+void ContextImpl::BindRenderTargets(UINT count, RenderTargetView* const* views, DepthStencilView* depthView) {
+  for (UINT i = 0; i < SIMULTANEOUS_RENDER_TARGET_COUNT; ++i) {
+    auto* view = i < count && views ? static_cast<RenderTargetViewImpl*>(views[i]) : nullptr;
     if (view) UnbindFromReads(view->resource());
     renderTargets_[i] = view;
   }
-  auto* depth = static_cast<DepthStencilViewImpl*>(pDepthStencilView);
+  auto* depth = static_cast<DepthStencilViewImpl*>(depthView);
   if (depth) UnbindFromReads(depth->resource());
   depthStencil_ = depth;
   SetTargetsKey();
@@ -234,12 +377,20 @@ bool ContextImpl::IsBoundForWriting(const BufferImpl* buffer) const {
 bool ContextImpl::IsBoundForStreamOutOrUav(const Resource* resource) const {
   for (const auto& target : streamOut_)
     if (target.buffer.Get() == resource) return true;
-  for (const auto& view : computeUavs_)
-    if (view && view->resource() == resource) return true;
+  return IsBoundAsUav(resource);
+}
+
+bool ContextImpl::IsBoundAsUav(const Resource* resource) const {
+  for (const UavSlots* slots : {&computeUavs_, &graphicsUavs_})
+    for (const auto& view : *slots)
+      if (view && view->resource() == resource) return true;
   return false;
 }
 
-void ContextImpl::UnbindFromReads(Resource* resource) {
+void ContextImpl::UnbindFromReads(Resource* resource, const char* call) {
+  for (UavSlots* slots : {&computeUavs_, &graphicsUavs_})
+    for (auto& view : *slots)
+      if (view && view->resource() == resource) view.Reset();
   for (auto& binding : vertexBuffers_)
     if (binding.buffer.Get() == resource) {
       binding = {};
@@ -249,8 +400,16 @@ void ContextImpl::UnbindFromReads(Resource* resource) {
   for (auto& stage : stages_) {
     for (auto& cb : stage.constantBuffers)
       if (cb.Get() == resource) cb.Reset();
-    for (auto& view : stage.shaderResources)
-      if (view && view->resource() == resource) view.Reset();
+    for (size_t slot = 0; slot < stage.shaderResources.size(); ++slot) {
+      auto& view = stage.shaderResources[slot];
+      if (!view || view->resource() != resource) continue;
+      view.Reset();
+      if (call)
+        device_->gpu().Report(MESSAGE_CATEGORY_STATE_SETTING, MESSAGE_SEVERITY_WARNING,
+                              std::string(call) + ": forcing " + StagePrefix(static_cast<ShaderStage>(&stage - stages_.data())) +
+                                  " shader resource slot " + std::to_string(slot) +
+                                  " to NULL: its resource is now bound as an unordered access view");
+    }
   }
   descriptorsDirty_ = true;
 }
@@ -264,6 +423,7 @@ void ContextImpl::ClearState() {
   topology_ = PRIMITIVE_TOPOLOGY_UNDEFINED;
   stages_ = {};
   computeUavs_ = {};
+  graphicsUavs_ = {};
   streamOut_ = {};
   rasterizer_.Reset();
   viewports_.clear();

@@ -305,6 +305,38 @@ void ContextImpl::CopyResource(Resource* pDstResource, Resource* pSrcResource) {
     CopySubresourceRegion(pDstResource, sub, 0, 0, 0, pSrcResource, sub, nullptr);
 }
 
+void ContextImpl::CopyStructureCount(Buffer* pDstBuffer, UINT DstAlignedByteOffset, UnorderedAccessView* pSrcView) {
+  auto* dst = static_cast<BufferImpl*>(pDstBuffer);
+  auto* view = static_cast<UnorderedAccessViewImpl*>(pSrcView);
+  BufferImpl* counter = view ? view->counter() : nullptr;
+  std::string reason;
+  if (!dst || !view)
+    reason = "pDstBuffer and pSrcView must not be NULL";
+  else if (!counter)
+    reason = "pSrcView has no hidden counter (a structured-buffer UAV created with BUFFER_UAV_FLAG_APPEND or "
+             "BUFFER_UAV_FLAG_COUNTER)";
+  else if (DstAlignedByteOffset % 4 != 0 || dst->desc().ByteWidth < 4 ||
+           DstAlignedByteOffset > dst->desc().ByteWidth - 4)
+    reason = "DstAlignedByteOffset (" + std::to_string(DstAlignedByteOffset) +
+             ") must be a multiple of 4 with 4 bytes of pDstBuffer after it";
+  else if (dst->isDynamic() || dst->desc().Usage == USAGE_IMMUTABLE)
+    reason = "pDstBuffer must be a DEFAULT or STAGING buffer (the GPU writes it)";
+  if (!reason.empty()) {
+    ReportDrawError("CopyStructureCount: " + reason + "; the call is ignored");
+    return;
+  }
+  EndRendering();
+  Use(*counter, uses::kTransferRead);
+  Use(*dst, uses::kTransferWrite);
+  FlushBarriers();
+  const VkBufferCopy region{counter->baseOffset(), dst->baseOffset() + DstAlignedByteOffset, sizeof(UINT)};
+  vkCmdCopyBuffer(Commands(), counter->handle(), dst->handle(), 1, &region);
+  if (dst->isStaging()) {
+    Use(*dst, uses::kHostRead);
+    FlushBarriers();
+  }
+}
+
 void ContextImpl::CopySubresourceRegion(Resource* pDstResource, UINT DstSubresource, UINT DstX, UINT DstY, UINT,
                                         Resource* pSrcResource, UINT SrcSubresource, const BOX* pSrcBox) {
   EndRendering();

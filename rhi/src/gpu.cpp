@@ -257,6 +257,8 @@ HRESULT Gpu::CreateLogicalDevice() {
   caps_.tessellationShader = supported.features.tessellationShader;
   caps_.pipelineStatistics = supported.features.pipelineStatisticsQuery;
   caps_.dualSourceBlend = supported.features.dualSrcBlend;
+  caps_.fragmentStoresAndAtomics = supported.features.fragmentStoresAndAtomics;
+  caps_.vertexPipelineStoresAndAtomics = supported.features.vertexPipelineStoresAndAtomics;
 
   if (caps_.transformFeedback) {
     VkPhysicalDeviceTransformFeedbackPropertiesEXT xfbProps{

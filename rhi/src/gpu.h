@@ -32,6 +32,8 @@ struct GpuCapabilities {
   bool tessellationShader = false;
   bool pipelineStatistics = false;
   bool dualSourceBlend = false;
+  bool fragmentStoresAndAtomics = false;        // pixel-shader UAVs
+  bool vertexPipelineStoresAndAtomics = false;  // UAVs in VS, HS, DS, GS
   float timestampPeriodNs = 1.0f;
   VkPhysicalDeviceLimits limits{};
 };

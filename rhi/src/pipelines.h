@@ -45,10 +45,13 @@ struct RegisterSlot {
   ShaderStage stage;
   RegisterClass registerClass;
   uint32_t slot;
+  bool counter = false;  // the hidden counter of UAV u<slot>, not the UAV itself
 };
 inline RegisterSlot RegisterOfBinding(uint32_t binding) {
   const auto stage = static_cast<ShaderStage>(binding / kStageStride);
   const uint32_t offset = binding % kStageStride;
+  if (offset >= kUnorderedAccessCounterBase)
+    return {stage, RegisterClass::UnorderedAccess, offset - kUnorderedAccessCounterBase, true};
   if (offset >= kUnorderedAccessBase) return {stage, RegisterClass::UnorderedAccess, offset - kUnorderedAccessBase};
   if (offset >= kSamplerBase) return {stage, RegisterClass::Sampler, offset - kSamplerBase};
   if (offset >= kShaderResourceBase) return {stage, RegisterClass::ShaderResource, offset - kShaderResourceBase};

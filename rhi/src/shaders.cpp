@@ -24,6 +24,29 @@ const char* StageName(ShaderStage stage) {
   return "?";
 }
 
+// The first register the shader writes through (a UAV), if any.
+const spirv::DescriptorBinding* FirstWritableBinding(const spirv::Reflection& reflection) {
+  for (const spirv::DescriptorBinding& b : reflection.bindings) {
+    const bool storage = b.kind == spirv::DescriptorKind::StorageBuffer ||
+                         b.kind == spirv::DescriptorKind::StorageImage ||
+                         b.kind == spirv::DescriptorKind::StorageTexelBuffer;
+    if (storage && !b.nonWritable) return &b;
+  }
+  return nullptr;
+}
+
+// Vulkan lets graphics stages write storage resources only with the
+// fragmentStoresAndAtomics / vertexPipelineStoresAndAtomics features.
+std::string CheckUavSupport(const Gpu& gpu, ShaderStage stage, const spirv::Reflection& reflection) {
+  if (stage == ShaderStage::Compute) return {};
+  const spirv::DescriptorBinding* uav = FirstWritableBinding(reflection);
+  if (!uav) return {};
+  const bool pixel = stage == ShaderStage::Pixel;
+  if (pixel ? gpu.Caps().fragmentStoresAndAtomics : gpu.Caps().vertexPipelineStoresAndAtomics) return {};
+  return std::string("the ") + StageName(stage) + " shader writes unordered access view '" + uav->name + "', but " +
+         gpu.AdapterName() + " lacks " + (pixel ? "fragmentStoresAndAtomics" : "vertexPipelineStoresAndAtomics");
+}
+
 template <class Interface>
 HRESULT CreateShaderObject(DeviceImpl& device, const void* bytecode, SIZE_T length, ClassLinkage* linkage,
                            ShaderStage stage, const char* call, Interface** out) {
@@ -48,6 +71,11 @@ HRESULT LoadShaderCode(DeviceImpl& device, const void* bytecode, SIZE_T length, 
   auto code = std::make_shared<ShaderCode>();
   code->words.resize(length / 4);
   std::memcpy(code->words.data(), bytecode, length);
+  // A UAV's hidden counter is bound by the UAV's slot (before reflection, which reports the moved binding).
+  spirv::WordsResult counters =
+      spirv::MoveHiddenCounters(code->words, kUnorderedAccessCounterBase - kUnorderedAccessBase);
+  if (!counters) return gpu.Refuse(std::string(call) + ": " + counters.error);
+  code->words = std::move(*counters);
   spirv::Result<spirv::Reflection> reflected = spirv::Reflect(code->words);
   if (!reflected) return gpu.Refuse(std::string(call) + ": " + reflected.error);
   code->reflection = std::move(*reflected);
@@ -61,6 +89,8 @@ HRESULT LoadShaderCode(DeviceImpl& device, const void* bytecode, SIZE_T length, 
   if ((expected == ShaderStage::Geometry && !gpu.Caps().geometryShader) ||
       ((expected == ShaderStage::Hull || expected == ShaderStage::Domain) && !gpu.Caps().tessellationShader))
     return gpu.Refuse(std::string(call) + ": " + gpu.AdapterName() + " has no " + StageName(expected) + " shaders");
+  if (std::string reason = CheckUavSupport(gpu, code->stage, code->reflection); !reason.empty())
+    return gpu.Refuse(std::string(call) + ": " + reason);
   // D3D11's SV_InstanceID counts from 0 in every draw; Vulkan's InstanceIndex includes firstInstance.
   if (expected == ShaderStage::Vertex) code->words = spirv::RebaseInstanceIndex(code->words).value;
   code->serial = device.NextSerial();

@@ -122,6 +122,25 @@ class TracingContext final : public DeviceContext {
     Record("OMSetRenderTargets", Format("%u, ", n) + Objects(n, rtvs) + ", " + Obj(dsv));
     inner_->OMSetRenderTargets(n, rtvs, dsv);
   }
+  void OMSetRenderTargetsAndUnorderedAccessViews(UINT n, RenderTargetView* const* rtvs, DepthStencilView* dsv,
+                                                 UINT uavStart, UINT uavCount, UnorderedAccessView* const* uavs,
+                                                 const UINT* counts) override {
+    if (trace_->enabled) {
+      // KEEP_* counts (0xffffffff) print as -1 and list no views.
+      const bool keepTargets = n == KEEP_RENDER_TARGETS_AND_DEPTH_STENCIL;
+      const bool keepUavs = uavCount == KEEP_UNORDERED_ACCESS_VIEWS;
+      std::string args = Format("%d, ", int(n)) + (keepTargets ? "" : Objects(n, rtvs) + ", ") + Obj(dsv) +
+                         Format(", %u, %d", uavStart, int(uavCount));
+      for (UINT i = 0; !keepUavs && i < uavCount; ++i)
+        args += Format(", %s/%d", Obj(uavs ? uavs[i] : nullptr).c_str(), counts ? int(counts[i]) : -1);
+      Record("OMSetRenderTargetsAndUnorderedAccessViews", args);
+    }
+    inner_->OMSetRenderTargetsAndUnorderedAccessViews(n, rtvs, dsv, uavStart, uavCount, uavs, counts);
+  }
+  void OMGetRenderTargetsAndUnorderedAccessViews(UINT n, RenderTargetView** rtvs, DepthStencilView** dsv,
+                                                 UINT uavStart, UINT uavCount, UnorderedAccessView** uavs) override {
+    inner_->OMGetRenderTargetsAndUnorderedAccessViews(n, rtvs, dsv, uavStart, uavCount, uavs);
+  }
   void OMSetBlendState(BlendState* s, const FLOAT factor[4], UINT mask) override {
     Record("OMSetBlendState", Obj(s) + Format(", 0x%08X", mask));
     inner_->OMSetBlendState(s, factor, mask);
@@ -210,6 +229,10 @@ class TracingContext final : public DeviceContext {
   void ResolveSubresource(Resource* dst, UINT dstSub, Resource* src, UINT srcSub, DXGI_FORMAT format) override {
     Record("ResolveSubresource", Obj(dst) + Format(", %u, ", dstSub) + Obj(src) + Format(", %u, %d", srcSub, int(format)));
     inner_->ResolveSubresource(dst, dstSub, src, srcSub, format);
+  }
+  void CopyStructureCount(Buffer* dst, UINT offset, UnorderedAccessView* src) override {
+    Record("CopyStructureCount", Obj(dst) + Format(", %u, ", offset) + Obj(src));
+    inner_->CopyStructureCount(dst, offset, src);
   }
 
   void Begin(Asynchronous* a) override {

@@ -361,9 +361,13 @@ HRESULT UnorderedAccessViewImpl::Initialize(Resource* resource) {
   const UINT bind = buffer ? buffer->desc().BindFlags : texture ? texture->shape().bindFlags : 0;
   if (!(bind & BIND_UNORDERED_ACCESS))
     return device().gpu().Refuse("CreateUnorderedAccessView: the resource lacks BIND_UNORDERED_ACCESS");
-  if (d.ViewDimension == UAV_DIMENSION_BUFFER)
-    return InitBuffer(device(), resource, d.Format, d.Buffer.FirstElement, d.Buffer.NumElements, true,
-                      "CreateUnorderedAccessView");
+  if (d.ViewDimension == UAV_DIMENSION_BUFFER) {
+    if (HRESULT hr = InitBuffer(device(), resource, d.Format, d.Buffer.FirstElement, d.Buffer.NumElements, true,
+                                "CreateUnorderedAccessView");
+        FAILED(hr))
+      return hr;
+    return CreateCounter(resource);
+  }
   VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, d.Texture2D.MipSlice, 1, 0, 1};
   bool isArray = d.ViewDimension == UAV_DIMENSION_TEXTURE2DARRAY || d.ViewDimension == UAV_DIMENSION_TEXTURE1DARRAY;
   if (isArray) {
@@ -373,6 +377,31 @@ HRESULT UnorderedAccessViewImpl::Initialize(Resource* resource) {
   RESOURCE_DIMENSION dimension = texture ? texture->shape().dimension : RESOURCE_DIMENSION_TEXTURE2D;
   return InitTexture(device(), resource, d.Format, ViewType(dimension, isArray, false), range,
                      VK_IMAGE_USAGE_STORAGE_BIT, "CreateUnorderedAccessView");
+}
+
+HRESULT UnorderedAccessViewImpl::CreateCounter(Resource* resource) {
+  const UINT flags = desc_.Buffer.Flags & (BUFFER_UAV_FLAG_APPEND | BUFFER_UAV_FLAG_COUNTER);
+  if (!flags) return S_OK;
+  Gpu& gpu = device().gpu();
+  if (flags == (BUFFER_UAV_FLAG_APPEND | BUFFER_UAV_FLAG_COUNTER))
+    return gpu.Refuse("CreateUnorderedAccessView: BUFFER_UAV_FLAG_APPEND and BUFFER_UAV_FLAG_COUNTER exclude each other");
+  if (!(AsBuffer(resource)->desc().MiscFlags & RESOURCE_MISC_BUFFER_STRUCTURED))
+    return gpu.Refuse(std::string("CreateUnorderedAccessView: ") +
+                      (flags == BUFFER_UAV_FLAG_APPEND ? "BUFFER_UAV_FLAG_APPEND" : "BUFFER_UAV_FLAG_COUNTER") +
+                      " needs a structured buffer (RESOURCE_MISC_BUFFER_STRUCTURED)");
+  // The count starts at 0; pUAVInitialCounts and the shaders change it on the GPU.
+  const UINT zero = 0;
+  const SUBRESOURCE_DATA initial{&zero, 0, 0};
+  BUFFER_DESC desc{};
+  desc.ByteWidth = sizeof(UINT);
+  desc.Usage = USAGE_DEFAULT;
+  desc.BindFlags = BIND_UNORDERED_ACCESS;
+  desc.MiscFlags = RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS;
+  BufferImpl* counter = nullptr;
+  if (HRESULT hr = BufferImpl::Create(&device(), desc, &initial, &counter); FAILED(hr)) return hr;
+  counter_ = Bound<BufferImpl>(counter);
+  counter->Release();  // the binding alone keeps it
+  return S_OK;
 }
 
 }  // namespace rhi::vk

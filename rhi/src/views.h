@@ -85,12 +85,18 @@ class UnorderedAccessViewImpl final : public DeviceChildImpl<UnorderedAccessView
     *ppResource = resource();
   }
   void GetDesc(UNORDERED_ACCESS_VIEW_DESC* desc) override { *desc = desc_; }
+  // The hidden counter of a BUFFER_UAV_FLAG_APPEND / _COUNTER view (D3D11 keeps
+  // it in the view, not in the buffer): a 4-byte buffer; null for other views.
+  BufferImpl* counter() const { return counter_.Get(); }
 
  private:
   UnorderedAccessViewImpl(DeviceImpl* device, const UNORDERED_ACCESS_VIEW_DESC& desc)
       : DeviceChildImpl(device), desc_(desc) {}
   HRESULT Initialize(Resource* resource);
+  HRESULT CreateCounter(Resource* resource);
   UNORDERED_ACCESS_VIEW_DESC desc_;
+  // A binding, not a reference, as the viewed resource's hold: no device cycle.
+  Bound<BufferImpl> counter_;
 };
 
 }  // namespace rhi::vk

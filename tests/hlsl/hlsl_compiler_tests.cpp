@@ -353,6 +353,25 @@ TEST(HlslProfiles, ComputeShaderKeepsNumThreads) {
   EXPECT_EQ(m.executionModes[0], (std::vector<uint32_t>{kModeLocalSize, 8, 4, 1}));
 }
 
+// fxc converts an integer literal given to a RWByteAddressBuffer atomic;
+// glslang passes it as an int to a uint atomic, which SPIR-V validation
+// rejects unless the compiler retypes it.
+TEST(HlslProfiles, ByteAddressBufferAtomicsTakeIntegerLiterals) {
+  const CompileResult r = Compile(R"(
+RWByteAddressBuffer raw : register(u1);
+float4 main(float4 p : SV_Position) : SV_Target {
+  uint old;
+  raw.InterlockedAdd(0, 1);
+  raw.InterlockedAdd(4, 2, old);
+  raw.InterlockedMin(8, -3);
+  raw.InterlockedCompareExchange(12, 0, uint(p.x), old);
+  raw.InterlockedExchange(16, 5, old);
+  return float4(old, 0, 0, 1);
+})",
+                                  "main", "ps_5_0");
+  ASSERT_COMPILED(r);
+}
+
 // ---------------------------------------------------------------------------
 // Register -> binding mapping
 

@@ -74,6 +74,38 @@ float4 main(float4 c : COLOR0) : SV_Target { queue.Append(c); return c; })";
   EXPECT_VALID_SPIRV(stripped);
 }
 
+// glslang puts a hidden counter at the lowest free binding; the backend finds
+// it by its UAV's binding instead.
+TEST(SpirvHiddenCounters, MoveToTheirUavBindingPlusTheOffset) {
+  const char* source = R"(
+AppendStructuredBuffer<float4> queue : register(u3);
+RWStructuredBuffer<uint> slots : register(u1);
+RWStructuredBuffer<uint> plain : register(u2);
+float4 main(float4 c : COLOR0) : SV_Target { queue.Append(c); slots[slots.IncrementCounter()] = plain[0]; return c; })";
+  const std::vector<uint32_t> words = Compile(source, spirv_test::Stage::Pixel);
+  const std::vector<uint32_t> moved = Ok(MoveHiddenCounters(words, 100));
+  EXPECT_VALID_SPIRV(moved);
+  const Reflection r = ReflectOrDie(moved);
+  const auto named = [&r](std::string_view name) {
+    for (const DescriptorBinding& b : r.bindings)
+      if (b.name == name) return b;
+    ADD_FAILURE() << "no binding " << name;
+    return DescriptorBinding{};
+  };
+  for (const char* uav : {"queue", "slots"}) {
+    const DescriptorBinding counted = named(uav);
+    const DescriptorBinding counter = named(std::string(uav) + "@count");
+    EXPECT_EQ(counter.counterOf, counted.variableId) << uav;
+    EXPECT_EQ(counter.binding, counted.binding + 100) << uav;
+    EXPECT_EQ(counted.counterOf, 0u) << uav;
+  }
+  EXPECT_EQ(named("plain").counterOf, 0u);
+  // A module without counters comes back unchanged.
+  const std::vector<uint32_t> none = Compile("float4 main(float4 c : COLOR0) : SV_Target { return c; }",
+                                             spirv_test::Stage::Pixel);
+  EXPECT_EQ(Ok(MoveHiddenCounters(none, 100)), none);
+}
+
 TEST(SpirvStrip, RemovesUserTypeAndGoogleExtensions) {
   const std::vector<uint32_t> words = spirv_test::Assemble(R"(
                OpCapability Shader

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <list>
+#include <map>
 #include <mutex>
 #include <regex>
 #include <spirv-tools/libspirv.hpp>
@@ -236,6 +237,88 @@ void RenameEntryPoint(std::vector<uint32_t>& spirv) {
   }
 }
 
+// glslang's HLSL front end passes an integer literal given to a
+// RWByteAddressBuffer atomic (raw.InterlockedAdd(0, 1), the comparand of
+// InterlockedCompareExchange) as an `int` constant to a `uint` atomic, which
+// SPIR-V forbids; fxc converts it. This gives each such operand the constant
+// of the atomic's own type with the same bits (found, or added after that type).
+class AtomicLiteralRetyper {
+ public:
+  explicit AtomicLiteralRetyper(std::vector<uint32_t>& spirv) : spirv_(spirv) {}
+
+  void Run() {
+    Index();
+    for (size_t at = 5; at < spirv_.size() && (spirv_[at] >> 16) != 0; at += spirv_[at] >> 16) {
+      const uint32_t op = spirv_[at] & 0xffff, count = spirv_[at] >> 16;
+      if (op == kOpAtomicCompareExchange && count > 8) {
+        Retype(at, 7);
+        Retype(at, 8);
+      } else if ((op == kOpAtomicExchange || (op >= kOpAtomicIAdd && op <= kOpAtomicXor)) && count > 6) {
+        Retype(at, 6);
+      }
+    }
+    InsertAddedConstants();
+  }
+
+ private:
+  static constexpr uint32_t kOpTypeInt = 21, kOpConstant = 43, kOpAtomicExchange = 229,
+                            kOpAtomicCompareExchange = 230, kOpAtomicIAdd = 234, kOpAtomicXor = 242;
+  struct Constant {
+    uint32_t type, value;
+  };
+
+  void Index() {
+    for (size_t at = 5; at < spirv_.size() && (spirv_[at] >> 16) != 0; at += spirv_[at] >> 16) {
+      const uint32_t op = spirv_[at] & 0xffff, count = spirv_[at] >> 16;
+      if (op == kOpTypeInt && count == 4) intTypes_[spirv_[at + 1]] = {at, spirv_[at + 2]};
+      if (op == kOpConstant && count == 4) {
+        constants_[spirv_[at + 2]] = {spirv_[at + 1], spirv_[at + 3]};
+        byValue_[{spirv_[at + 1], spirv_[at + 3]}] = spirv_[at + 2];
+      }
+    }
+  }
+
+  // Operand word `word` of the atomic at `at`, against its result type (word 1).
+  void Retype(size_t at, size_t word) {
+    const uint32_t type = spirv_[at + 1];
+    const auto constant = constants_.find(spirv_[at + word]);
+    if (constant == constants_.end() || constant->second.type == type) return;
+    const auto from = intTypes_.find(constant->second.type), to = intTypes_.find(type);
+    if (from == intTypes_.end() || to == intTypes_.end() || from->second.width != to->second.width) return;
+    spirv_[at + word] = ConstantOf(type, constant->second.value);
+  }
+
+  uint32_t ConstantOf(uint32_t type, uint32_t value) {
+    if (const auto it = byValue_.find({type, value}); it != byValue_.end()) return it->second;
+    const uint32_t id = spirv_[3]++;  // the header's id bound
+    added_[intTypes_.at(type).at].push_back({type, id, value});
+    byValue_[{type, value}] = id;
+    return id;
+  }
+
+  // After each integer type, the constants added of that type (positions from the back, so none moves).
+  void InsertAddedConstants() {
+    for (auto it = added_.rbegin(); it != added_.rend(); ++it) {
+      std::vector<uint32_t> words;
+      for (const auto& [type, id, value] : it->second) words.insert(words.end(), {4u << 16 | kOpConstant, type, id, value});
+      spirv_.insert(spirv_.begin() + static_cast<std::ptrdiff_t>(it->first + 4), words.begin(), words.end());
+    }
+  }
+
+  struct IntType {
+    size_t at;
+    uint32_t width;
+  };
+  struct Added {
+    uint32_t type, id, value;
+  };
+  std::vector<uint32_t>& spirv_;
+  std::map<uint32_t, IntType> intTypes_;
+  std::map<uint32_t, Constant> constants_;
+  std::map<std::pair<uint32_t, uint32_t>, uint32_t> byValue_;
+  std::map<size_t, std::vector<Added>> added_;  // by the position of their type
+};
+
 bool Validate(const std::vector<uint32_t>& spirv, std::string& error) {
   spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_3);
   tools.SetMessageConsumer(CollectInto(error));
@@ -296,6 +379,7 @@ std::vector<uint32_t> GenerateSpirv(const glslang::TProgram& program, EShLanguag
 
 void Finish(std::vector<uint32_t> spirv, const std::string& fileName, CompileResult& result) {
   std::string error;
+  AtomicLiteralRetyper(spirv).Run();
   if (!Legalize(spirv, error)) return AddError(result, fileName, "SPIR-V legalization failed: " + error);
   RenameEntryPoint(spirv);
   if (!Validate(spirv, error)) return AddError(result, fileName, "SPIR-V validation failed: " + error);

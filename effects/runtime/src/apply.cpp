@@ -65,6 +65,27 @@ std::array<T*, kMaxBindCount> Gather(const ObjectSlots<T>& slots, UINT count) {
   return objects;
 }
 
+// FX11 binds a pixel shader's UAVs through the output merger, keeping the
+// render targets, from the shader's lowest UAV register to its highest (the
+// loader refused UAVs outside u0..u7 and outside pixel and compute shaders),
+// and keeps the hidden counters (initial counts -1).
+void BindPixelShaderUavs(EffectImpl& e, DeviceContext* c, const ShaderState& s) {
+  constexpr UINT kSlots = rhi::PS_CS_UAV_REGISTER_COUNT;
+  std::array<rhi::UnorderedAccessView*, kSlots> views{};
+  UINT first = kSlots, end = 0;
+  for (const Binding& b : s.bindings) {
+    if (b.cls != RC::UnorderedAccess) continue;
+    for (UINT i = 0; i < b.count && b.slot + i < kSlots; ++i) views[b.slot + i] = e.uavs[b.variable].Get(i);
+    first = std::min(first, b.slot);
+    end = std::max(end, std::min(b.slot + b.count, kSlots));
+  }
+  if (first >= end) return;
+  std::array<UINT, kSlots> keepCounts;
+  keepCounts.fill(UINT(-1));
+  c->OMSetRenderTargetsAndUnorderedAccessViews(rhi::KEEP_RENDER_TARGETS_AND_DEPTH_STENCIL, nullptr, nullptr, first,
+                                               end - first, views.data() + first, keepCounts.data());
+}
+
 void BindShaderInputs(EffectImpl& e, DeviceContext* c, ShaderStage stage, const ShaderState& s) {
   e.Upload(c, s);
   for (const Binding& b : s.bindings) {
@@ -78,12 +99,13 @@ void BindShaderInputs(EffectImpl& e, DeviceContext* c, ShaderStage stage, const 
       case RC::ShaderResource: SetShaderResources(c, stage, b.slot, count, Gather(e.srvs[b.variable], count).data()); break;
       case RC::Sampler: SetSamplers(c, stage, b.slot, count, Gather(e.samplers[b.variable], count).data()); break;
       case RC::UnorderedAccess:
-        // The RHI binds UAVs to the compute stage only (no OMSetRenderTargetsAndUnorderedAccessViews).
+        // Pixel-shader UAVs share the output merger's slots: bound together below.
         if (stage == ShaderStage::Compute)
           c->CSSetUnorderedAccessViews(b.slot, count, Gather(e.uavs[b.variable], count).data(), nullptr);
         break;
     }
   }
+  if (stage == ShaderStage::Pixel) BindPixelShaderUavs(e, c, s);
 }
 
 void RunAction(EffectImpl& e, DeviceContext* c, const PassAction& a) {

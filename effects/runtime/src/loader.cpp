@@ -213,9 +213,23 @@ class Loader {
           int index = IndexOf(e_.ast.resources, r.name);
           if (index >= 0)
             s.bindings.push_back({uav ? RC::UnorderedAccess : RC::ShaderResource, r.registerSlot, r.bindCount, index, -1});
+          if (uav) CheckUavRegister(s, r);
         }
       }
     }
+  }
+
+  // What Apply cannot bind is an error here rather than a UAV silently left
+  // unbound: D3D11 (feature level 11_0) gives UAVs to pixel and compute
+  // shaders only, in registers u0..u7.
+  void CheckUavRegister(const ShaderState& s, const hlsl::ResourceInfo& r) {
+    const std::string shader = At(s.ast->where) + s.ast->profile + " " + s.ast->function + ": UAV '" + r.name + "' (u" +
+                               std::to_string(r.registerSlot) + ")";
+    if (s.ast->stage != ShaderStage::Pixel && s.ast->stage != ShaderStage::Compute)
+      errors_.push_back(shader + " cannot be bound: D3D11 binds UAVs to pixel and compute shaders only");
+    else if (r.registerSlot + std::max(r.bindCount, 1u) > rhi::PS_CS_UAV_REGISTER_COUNT)
+      errors_.push_back(shader + " lies beyond u" + std::to_string(rhi::PS_CS_UAV_REGISTER_COUNT - 1) +
+                        ", the last UAV register of feature level 11_0");
   }
 
   PassAction Resolve(const PassAssignment& a) {

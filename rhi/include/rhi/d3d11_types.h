@@ -43,6 +43,9 @@ inline constexpr UINT COMMONSHADER_CONSTANT_BUFFER_API_SLOT_COUNT = 14;
 inline constexpr UINT COMMONSHADER_INPUT_RESOURCE_SLOT_COUNT = 128;
 inline constexpr UINT COMMONSHADER_SAMPLER_SLOT_COUNT = 16;
 inline constexpr UINT PS_CS_UAV_REGISTER_COUNT = 8;
+// OMSetRenderTargetsAndUnorderedAccessViews: NumRTVs / NumUAVs that leave the bound views as they are.
+inline constexpr UINT KEEP_RENDER_TARGETS_AND_DEPTH_STENCIL = 0xffffffffu;
+inline constexpr UINT KEEP_UNORDERED_ACCESS_VIEWS = 0xffffffffu;
 inline constexpr UINT VIEWPORT_AND_SCISSORRECT_OBJECT_COUNT_PER_PIPELINE = 16;
 inline constexpr UINT SO_BUFFER_SLOT_COUNT = 4;
 inline constexpr UINT SO_STREAM_COUNT = 4;

@@ -224,6 +224,20 @@ class DeviceContext : public DeviceChild {
   // Output merger
   virtual void OMSetRenderTargets(UINT NumViews, RenderTargetView* const* ppRenderTargetViews,
                                   DepthStencilView* pDepthStencilView) = 0;
+  // Render targets and pixel-shader UAVs share the output merger's 8 slots: UAVStartSlot must not be
+  // below the render-target count. NumRTVs = KEEP_RENDER_TARGETS_AND_DEPTH_STENCIL and NumUAVs =
+  // KEEP_UNORDERED_ACCESS_VIEWS leave those bindings as they are; pUAVInitialCounts sets the hidden
+  // counters of append/counter UAVs (UINT(-1): keep the current count).
+  virtual void OMSetRenderTargetsAndUnorderedAccessViews(UINT NumRTVs, RenderTargetView* const* ppRenderTargetViews,
+                                                         DepthStencilView* pDepthStencilView, UINT UAVStartSlot,
+                                                         UINT NumUAVs,
+                                                         UnorderedAccessView* const* ppUnorderedAccessViews,
+                                                         const UINT* pUAVInitialCounts) = 0;
+  // Each returned view carries a reference; null pointers skip that part.
+  virtual void OMGetRenderTargetsAndUnorderedAccessViews(UINT NumRTVs, RenderTargetView** ppRenderTargetViews,
+                                                         DepthStencilView** ppDepthStencilView, UINT UAVStartSlot,
+                                                         UINT NumUAVs,
+                                                         UnorderedAccessView** ppUnorderedAccessViews) = 0;
   virtual void OMSetBlendState(BlendState* pBlendState, const FLOAT BlendFactor[4], UINT SampleMask) = 0;
   virtual void OMSetDepthStencilState(DepthStencilState* pDepthStencilState, UINT StencilRef) = 0;
 
@@ -258,6 +272,9 @@ class DeviceContext : public DeviceChild {
                                      Resource* pSrcResource, UINT SrcSubresource, const BOX* pSrcBox) = 0;
   virtual void ResolveSubresource(Resource* pDstResource, UINT DstSubresource, Resource* pSrcResource,
                                   UINT SrcSubresource, DXGI_FORMAT Format) = 0;
+  // Writes the hidden counter of an append/counter UAV as a UINT at DstAlignedByteOffset.
+  virtual void CopyStructureCount(Buffer* pDstBuffer, UINT DstAlignedByteOffset,
+                                  UnorderedAccessView* pSrcView) = 0;
 
   // Queries
   virtual void Begin(Asynchronous* pAsync) = 0;

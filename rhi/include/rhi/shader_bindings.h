@@ -21,6 +21,10 @@ inline constexpr uint32_t kConstantBufferBase = 0;     // b0..b13 (+ 2 spare)
 inline constexpr uint32_t kShaderResourceBase = 16;    // t0..t127
 inline constexpr uint32_t kSamplerBase = 144;          // s0..s15
 inline constexpr uint32_t kUnorderedAccessBase = 160;  // u0..u7 (room for 64)
+// The hidden counters of append/consume and counter UAVs: glslang gives each a
+// buffer of its own at a free u# register; the backend moves it here, to the
+// counted UAV's register + this base, so that the counter follows its UAV's slot.
+inline constexpr uint32_t kUnorderedAccessCounterBase = 224;  // counters of u0..u7 (room for 32)
 
 inline constexpr uint32_t RegisterClassBase(RegisterClass c) {
   switch (c) {

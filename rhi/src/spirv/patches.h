@@ -53,4 +53,12 @@ WordsResult RebaseInstanceIndex(std::span<const uint32_t> words);
 // apply it to a GS/DS only when that feature is enabled.
 WordsResult AddPointSizeOutput(std::span<const uint32_t> words);
 
+// glslang's HLSL front end gives the hidden counter of an Append/Consume or
+// counter UAV its own storage buffer ("name@count", the target of a
+// CounterBuffer decoration on the UAV) at the lowest free binding. This moves
+// every such counter to its UAV's binding + `bindingOffset`, so that a counter
+// is found by the slot of the UAV it counts for. Returns the words unchanged
+// when the module has no counter.
+WordsResult MoveHiddenCounters(std::span<const uint32_t> words, uint32_t bindingOffset);
+
 }  // namespace rhi::spirv

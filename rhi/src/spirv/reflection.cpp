@@ -42,6 +42,11 @@ class ModuleIndex {
     const auto it = semantics_.find({id, member});
     return it == semantics_.end() ? std::string() : it->second;
   }
+  // The UAV whose CounterBuffer decoration names `counter`, or 0.
+  uint32_t CounterOf(uint32_t counter) const {
+    const auto it = counterOf_.find(counter);
+    return it == counterOf_.end() ? 0 : it->second;
+  }
   std::string Name(uint32_t id) const {
     const auto it = names_.find(id);
     return it == names_.end() ? std::string() : it->second;
@@ -67,6 +72,10 @@ class ModuleIndex {
         decorations_[{inst.operand(0), inst.operand(1), inst.operand(2)}] =
             inst.operandCount() > 3 ? inst.operand(3) : 0;
         break;
+      case spv::Op::OpDecorateId:  // OpDecorateId %uav CounterBuffer %counter
+        if (inst.operandCount() > 2 && inst.operand(1) == static_cast<uint32_t>(spv::Decoration::CounterBuffer))
+          counterOf_[inst.operand(2)] = inst.operand(0);
+        break;
       case spv::Op::OpDecorateString:
         if (inst.operand(1) == static_cast<uint32_t>(spv::Decoration::UserSemantic))
           semantics_[{inst.operand(0), kNoMember}] = inst.stringAt(2);
@@ -83,6 +92,7 @@ class ModuleIndex {
   std::map<Key, uint32_t> decorations_;
   std::map<std::pair<uint32_t, uint32_t>, std::string> semantics_;
   std::unordered_map<uint32_t, std::string> names_;
+  std::unordered_map<uint32_t, uint32_t> counterOf_;
 };
 
 Stage StageOf(spv::ExecutionModel model) {
@@ -267,6 +277,7 @@ std::optional<DescriptorBinding> DescribeBinding(const ModuleIndex& index, const
   b.set = index.Decoration(id, spv::Decoration::DescriptorSet).value_or(0);
   b.binding = index.Decoration(id, spv::Decoration::Binding).value_or(0);
   b.nonWritable = index.Has(id, spv::Decoration::NonWritable);
+  b.counterOf = index.CounterOf(id);
   const Instruction* pointer = index.Def(var.resultType());
   const Instruction* type = pointer ? index.Def(pointer->operand(2)) : nullptr;
   if (type && OpOf(*type) == spv::Op::OpTypeArray) {

@@ -79,6 +79,9 @@ struct DescriptorBinding {
   uint32_t arrayCount = 1;  // 0: runtime-sized array
   std::string name;         // the variable's OpName, else its type's (glslang names cbuffer blocks by type)
   bool nonWritable = false; // storage buffer/image the shader cannot write (StructuredBuffer, SRV buffers)
+  // A hidden counter (glslang's "name@count" buffer of an Append/Consume or
+  // counter UAV): the variable id of the UAV it counts for, 0 otherwise.
+  uint32_t counterOf = 0;
 };
 
 enum class GsInputPrimitive { None, Points, Lines, LinesAdjacency, Triangles, TrianglesAdjacency };

@@ -294,7 +294,9 @@ class EffectPass {
   // Sets what the pass assigns (shaders, NULL included; blend, depth-stencil and
   // rasterizer states with factor, mask and ref), uploads changed constant
   // buffers and binds, for each stage it sets a shader on, the cbuffers, SRVs,
-  // samplers (and UAVs for compute) the shader uses. What it does not assign
+  // samplers and UAVs the shader uses (a pixel shader's UAVs through
+  // OMSetRenderTargetsAndUnorderedAccessViews with KEEP_RENDER_TARGETS_AND_DEPTH_STENCIL,
+  // from its lowest UAV register on, hidden counters kept). What it does not assign
   // stays as it was. Flags must be 0. It first calls
   // pContext->SetMarker("technique/pass") (ID3DUserDefinedAnnotation), which a
   // tracing context (rhi/trace.h) records and the Vulkan context turns into a

@@ -36,6 +36,10 @@ class ShaderCode;
 class QueryImpl;
 class QueryTracker;
 
+// The aspects of its texture that draws may write through `view`: a
+// DSV_READ_ONLY_DEPTH / _STENCIL view writes none of that aspect.
+VkImageAspectFlags WrittenAspects(const DepthStencilViewImpl& view);
+
 class ContextImpl final : public DeviceContext {
  public:
   explicit ContextImpl(DeviceImpl* device);
@@ -185,9 +189,12 @@ class ContextImpl final : public DeviceContext {
   void SetShaderResources(ShaderStage stage, UINT start, UINT count, ShaderResourceView* const* views);
   void SetSamplers(ShaderStage stage, UINT start, UINT count, SamplerState* const* samplers);
   void EmitBarriers();
-  // D3D11's hazard rule: a resource bound for writing leaves every read binding.
-  void UnbindFromReads(Resource* resource);
-  bool IsBoundForWriting(Resource* resource) const;
+  // D3D11's hazard rule: a resource bound for writing leaves every read binding,
+  // with a warning for each (DEVICE_*_HAZARD). `aspects`: those the output
+  // writes; shader-resource views of other aspects stay bound.
+  void UnbindFromReads(Resource* resource, const char* call, VkImageAspectFlags aspects = ~VkImageAspectFlags{0});
+  bool IsBoundForWriting(Resource* resource, VkImageAspectFlags aspects = ~VkImageAspectFlags{0}) const;
+  void ReportHazard(const std::string& text);
   // Render targets and depth-stencil views are texture-only: a buffer is written
   // only through stream output and UAVs (the IA setters' check, on every draw).
   bool IsBoundForWriting(const BufferImpl* buffer) const;

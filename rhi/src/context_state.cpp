@@ -7,6 +7,7 @@
 #include "queries.h"
 #include "resources.h"
 #include "shaders.h"
+#include "spirv/reflection.h"
 #include "state_objects.h"
 #include "views.h"
 
@@ -100,7 +101,12 @@ void ContextImpl::SetShaderResources(ShaderStage stage, UINT start, UINT count,
   for (UINT i = 0; i < count && start + i < slots.size(); ++i) {
     auto* view = static_cast<ShaderResourceViewImpl*>(views ? views[i] : nullptr);
     // A resource bound for writing cannot be bound for reading: D3D11 binds NULL.
-    if (view && IsBoundForWriting(view->resource())) view = nullptr;
+    // A depth buffer behind a read-only depth-stencil view is not being written.
+    if (view && IsBoundForWriting(view->resource(), view->range().aspectMask)) {
+      ReportHazard(std::string(spirv::StageName(static_cast<spirv::Stage>(stage))) + "SetShaderResources: the resource of shader resource slot " +
+                   std::to_string(start + i) + " is still bound on output; forcing it to NULL");
+      view = nullptr;
+    }
     slots[start + i] = view;
   }
   descriptorsDirty_ = true;
@@ -117,7 +123,7 @@ void ContextImpl::CSSetUnorderedAccessViews(UINT StartSlot, UINT NumUAVs, Unorde
                                             const UINT*) {
   for (UINT i = 0; i < NumUAVs && StartSlot + i < computeUavs_.size(); ++i) {
     auto* view = static_cast<UnorderedAccessViewImpl*>(ppUAVs ? ppUAVs[i] : nullptr);
-    if (view) UnbindFromReads(view->resource());
+    if (view) UnbindFromReads(view->resource(), "CSSetUnorderedAccessViews");
     computeUavs_[StartSlot + i] = view;
   }
   descriptorsDirty_ = true;
@@ -131,7 +137,7 @@ void ContextImpl::SOSetTargets(UINT NumBuffers, Buffer* const* ppSOTargets, cons
       ReportDrawError("SOSetTargets: buffer " + std::to_string(i) + " lacks BIND_STREAM_OUTPUT; bound as NULL");
       buffer = nullptr;
     }
-    if (buffer) UnbindFromReads(buffer);
+    if (buffer) UnbindFromReads(buffer, "SOSetTargets");
     const UINT offset = buffer && pOffsets ? pOffsets[i] : 0;
     streamOut_[i] = {buffer, offset, buffer && offset != UINT(-1)};
   }
@@ -169,11 +175,11 @@ void ContextImpl::OMSetRenderTargets(UINT NumViews, RenderTargetView* const* ppR
   for (UINT i = 0; i < SIMULTANEOUS_RENDER_TARGET_COUNT; ++i) {
     auto* view = i < NumViews && ppRenderTargetViews ? static_cast<RenderTargetViewImpl*>(ppRenderTargetViews[i])
                                                      : nullptr;
-    if (view) UnbindFromReads(view->resource());
+    if (view) UnbindFromReads(view->resource(), "OMSetRenderTargets");
     renderTargets_[i] = view;
   }
   auto* depth = static_cast<DepthStencilViewImpl*>(pDepthStencilView);
-  if (depth) UnbindFromReads(depth->resource());
+  if (depth) UnbindFromReads(depth->resource(), "OMSetRenderTargets", WrittenAspects(*depth));
   depthStencil_ = depth;
   SetTargetsKey();
   renderTargetsChanged_ = true;
@@ -184,10 +190,11 @@ void ContextImpl::SetTargetsKey() {
   key.samples = 1;
   for (uint32_t i = 0; i < renderTargets_.size(); ++i) {
     key.colorFormats[i] = renderTargets_[i] ? renderTargets_[i]->format() : DXGI_FORMAT_UNKNOWN;
-    if (renderTargets_[i]) key.samples = renderTargets_[i]->texture().shape().samples;
+    if (renderTargets_[i]) key.samples = static_cast<uint16_t>(renderTargets_[i]->texture().shape().samples);
   }
-  key.depthFormat = depthStencil_ ? depthStencil_->texture().shape().format : DXGI_FORMAT_UNKNOWN;
-  if (depthStencil_) key.samples = depthStencil_->texture().shape().samples;
+  key.depthFormat = depthStencil_ ? depthStencil_->texture().vkFormat() : VK_FORMAT_UNDEFINED;
+  key.dsvFlags = depthStencil_ ? static_cast<uint16_t>(depthStencil_->desc().Flags) : 0;
+  if (depthStencil_) key.samples = static_cast<uint16_t>(depthStencil_->texture().shape().samples);
   PipelineStateChanged();
 }
 
@@ -219,11 +226,19 @@ void ContextImpl::OMSetDepthStencilState(DepthStencilState* pDepthStencilState, 
   dynamicDirty_.stencilRef = true;
 }
 
-bool ContextImpl::IsBoundForWriting(Resource* resource) const {
+VkImageAspectFlags WrittenAspects(const DepthStencilViewImpl& view) {
+  VkImageAspectFlags aspects = view.texture().aspects();
+  if (view.desc().Flags & DSV_READ_ONLY_DEPTH) aspects &= ~VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT);
+  if (view.desc().Flags & DSV_READ_ONLY_STENCIL) aspects &= ~VkImageAspectFlags(VK_IMAGE_ASPECT_STENCIL_BIT);
+  return aspects;
+}
+
+bool ContextImpl::IsBoundForWriting(Resource* resource, VkImageAspectFlags aspects) const {
   if (!resource) return false;
   for (const auto& view : renderTargets_)
     if (view && view->resource() == resource) return true;
-  if (depthStencil_ && depthStencil_->resource() == resource) return true;
+  if (depthStencil_ && depthStencil_->resource() == resource && (WrittenAspects(*depthStencil_) & aspects))
+    return true;
   return IsBoundForStreamOutOrUav(resource);
 }
 
@@ -239,18 +254,35 @@ bool ContextImpl::IsBoundForStreamOutOrUav(const Resource* resource) const {
   return false;
 }
 
-void ContextImpl::UnbindFromReads(Resource* resource) {
-  for (auto& binding : vertexBuffers_)
-    if (binding.buffer.Get() == resource) {
-      binding = {};
+void ContextImpl::UnbindFromReads(Resource* resource, const char* call, VkImageAspectFlags aspects) {
+  const std::string prefix = std::string(call) + ": the resource being bound for output is still bound on input; ";
+  for (UINT slot = 0; slot < vertexBuffers_.size(); ++slot)
+    if (vertexBuffers_[slot].buffer.Get() == resource) {
+      vertexBuffers_[slot] = {};
       vertexBuffersDirty_ = true;
+      ReportHazard(prefix + "forcing vertex buffer slot " + std::to_string(slot) + " to NULL");
     }
-  if (indexBuffer_.buffer.Get() == resource) indexBuffer_ = {};
-  for (auto& stage : stages_) {
-    for (auto& cb : stage.constantBuffers)
-      if (cb.Get() == resource) cb.Reset();
-    for (auto& view : stage.shaderResources)
-      if (view && view->resource() == resource) view.Reset();
+  if (indexBuffer_.buffer.Get() == resource) {
+    indexBuffer_ = {};
+    ReportHazard(prefix + "forcing the index buffer to NULL");
+  }
+  for (uint32_t stage = 0; stage < kShaderStageCount; ++stage) {
+    // spirv::Stage lists the stages in ShaderStage's order.
+    const std::string stageName = spirv::StageName(static_cast<spirv::Stage>(stage));
+    auto& state = stages_[stage];
+    for (UINT slot = 0; slot < state.constantBuffers.size(); ++slot)
+      if (state.constantBuffers[slot].Get() == resource) {
+        state.constantBuffers[slot].Reset();
+        ReportHazard(prefix + "forcing " + stageName + " constant buffer slot " + std::to_string(slot) + " to NULL");
+      }
+    // A shader-resource view reads one aspect; a read-only depth-stencil view writes neither.
+    for (UINT slot = 0; slot < state.shaderResources.size(); ++slot) {
+      const auto& view = state.shaderResources[slot];
+      if (view && view->resource() == resource && (view->range().aspectMask & aspects)) {
+        state.shaderResources[slot].Reset();
+        ReportHazard(prefix + "forcing " + stageName + " shader resource slot " + std::to_string(slot) + " to NULL");
+      }
+    }
   }
   descriptorsDirty_ = true;
 }
@@ -277,6 +309,10 @@ void ContextImpl::ClearState() {
   stencilRef_ = 0;
   renderTargetsChanged_ = descriptorsDirty_ = vertexBuffersDirty_ = true;
   dynamicDirty_.All();
+}
+
+void ContextImpl::ReportHazard(const std::string& text) {
+  device_->gpu().Report(MESSAGE_CATEGORY_STATE_SETTING, MESSAGE_SEVERITY_WARNING, text);
 }
 
 void ContextImpl::ReportDrawError(const std::string& text) {

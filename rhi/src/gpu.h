@@ -32,6 +32,7 @@ struct GpuCapabilities {
   bool tessellationShader = false;
   bool pipelineStatistics = false;
   bool dualSourceBlend = false;
+  bool sampleRateShading = false;  // SV_SampleIndex / per-sample pixel shaders
   float timestampPeriodNs = 1.0f;
   VkPhysicalDeviceLimits limits{};
 };
@@ -62,6 +63,9 @@ class Gpu {
   VkResult AllocateFor(VkMemoryRequirements requirements, VkMemoryPropertyFlags properties,
                        VkDeviceMemory* memory) const;
   bool IsFormatSupported(VkFormat format, VkFormatFeatureFlags2 features, bool optimalTiling = true) const;
+  // The sample counts an image of `info` (format, type, tiling, usage, flags) may
+  // have; 0 when the device cannot create it at all.
+  VkSampleCountFlags ImageSampleCounts(const VkImageCreateInfo& info) const;
 
   // Submission. Commands are recorded into the current command buffer; each
   // submission gets a serial, and resources remember the serial of their last use.

@@ -24,6 +24,15 @@ const char* StageName(ShaderStage stage) {
   return "?";
 }
 
+// A pixel shader that reads SV_SampleIndex (Vulkan's SampleId) or the sample
+// position runs per sample, in D3D11 as in Vulkan.
+bool RunsPerSample(const spirv::Reflection& reflection) {
+  static constexpr uint32_t kBuiltInSampleId = 18, kBuiltInSamplePosition = 19;
+  return std::any_of(reflection.inputs.begin(), reflection.inputs.end(), [](const spirv::InterfaceVariable& input) {
+    return input.builtIn == kBuiltInSampleId || input.builtIn == kBuiltInSamplePosition;
+  });
+}
+
 template <class Interface>
 HRESULT CreateShaderObject(DeviceImpl& device, const void* bytecode, SIZE_T length, ClassLinkage* linkage,
                            ShaderStage stage, const char* call, Interface** out) {
@@ -61,6 +70,9 @@ HRESULT LoadShaderCode(DeviceImpl& device, const void* bytecode, SIZE_T length, 
   if ((expected == ShaderStage::Geometry && !gpu.Caps().geometryShader) ||
       ((expected == ShaderStage::Hull || expected == ShaderStage::Domain) && !gpu.Caps().tessellationShader))
     return gpu.Refuse(std::string(call) + ": " + gpu.AdapterName() + " has no " + StageName(expected) + " shaders");
+  if (expected == ShaderStage::Pixel && RunsPerSample(code->reflection) && !gpu.Caps().sampleRateShading)
+    return gpu.Refuse(std::string(call) + ": the shader reads SV_SampleIndex, so it runs once per sample, which "
+                      "needs Vulkan's sampleRateShading feature; " + gpu.AdapterName() + " lacks it");
   // D3D11's SV_InstanceID counts from 0 in every draw; Vulkan's InstanceIndex includes firstInstance.
   if (expected == ShaderStage::Vertex) code->words = spirv::RebaseInstanceIndex(code->words).value;
   code->serial = device.NextSerial();

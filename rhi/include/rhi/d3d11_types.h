@@ -53,6 +53,12 @@ inline constexpr UINT8 DEFAULT_STENCIL_READ_MASK = 0xff;
 inline constexpr UINT8 DEFAULT_STENCIL_WRITE_MASK = 0xff;
 inline constexpr FLOAT FLOAT32_MAX = 3.402823466e+38f;
 inline constexpr UINT REQ_MAXANISOTROPY = 16;
+inline constexpr UINT MAX_MULTISAMPLE_SAMPLE_COUNT = 32;
+
+// DXGI_SAMPLE_DESC::Quality values that name a sample pattern (D3D11_STANDARD_MULTISAMPLE_QUALITY_LEVELS).
+// The standard pattern is Vulkan's standard sample locations; the centre pattern has no Vulkan counterpart.
+inline constexpr UINT STANDARD_MULTISAMPLE_PATTERN = 0xffffffffu;
+inline constexpr UINT CENTER_MULTISAMPLE_PATTERN = 0xfffffffeu;
 
 enum DXGI_FORMAT : UINT {
   DXGI_FORMAT_UNKNOWN = 0,

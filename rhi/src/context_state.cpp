@@ -275,10 +275,10 @@ void ContextImpl::UnbindFromReads(Resource* resource, const char* call, VkImageA
         state.constantBuffers[slot].Reset();
         ReportHazard(prefix + "forcing " + stageName + " constant buffer slot " + std::to_string(slot) + " to NULL");
       }
-    // A shader-resource view reads one aspect; a read-only depth-stencil view writes neither.
+    // A texture's shader-resource view reads one aspect; a read-only depth-stencil view writes neither.
     for (UINT slot = 0; slot < state.shaderResources.size(); ++slot) {
       const auto& view = state.shaderResources[slot];
-      if (view && view->resource() == resource && (view->range().aspectMask & aspects)) {
+      if (view && view->resource() == resource && (view->buffer() || (view->range().aspectMask & aspects))) {
         state.shaderResources[slot].Reset();
         ReportHazard(prefix + "forcing " + stageName + " shader resource slot " + std::to_string(slot) + " to NULL");
       }

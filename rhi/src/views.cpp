@@ -148,6 +148,15 @@ VkImageAspectFlags ColorOrDepth(const TextureStorage& texture) {
   return (texture.aspects() & VK_IMAGE_ASPECT_DEPTH_BIT) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
 }
 
+// The one aspect a shader-resource view of `format` reads: a depth image's
+// stencil for the stencil formats (X24_TYPELESS_G8_UINT), else its depth.
+VkImageAspectFlags ReadAspect(const TextureStorage& texture, DXGI_FORMAT format) {
+  const auto* info = states::GetFormatInfo(format == DXGI_FORMAT_UNKNOWN ? texture.shape().format : format);
+  const bool stencil = info && info->hasStencil && !info->isDepth;
+  return stencil && (texture.aspects() & VK_IMAGE_ASPECT_STENCIL_BIT) ? VK_IMAGE_ASPECT_STENCIL_BIT
+                                                                       : ColorOrDepth(texture);
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------
@@ -175,7 +184,7 @@ HRESULT ShaderResourceViewImpl::Initialize(Resource* resource) {
   if (std::string reason = CheckSampleDimension(resource, multisampledView, "CreateShaderResourceView");
       !reason.empty())
     return dev.gpu().Refuse(reason);
-  VkImageSubresourceRange range{ColorOrDepth(*texture), 0, 1, 0, 1};
+  VkImageSubresourceRange range{ReadAspect(*texture, d.Format), 0, 1, 0, 1};
   bool isArray = false, cube = false;
   switch (d.ViewDimension) {
     case SRV_DIMENSION_TEXTURE1D:

@@ -189,6 +189,65 @@ TEST_F(RhiGpuTest, MultisampledDepthIsReadPerSampleThroughTexture2DMS) {
             << "pixel (" << x << "," << y << ") sample " << s;
 }
 
+// The stencil of an R24G8 texture read through X24_TYPELESS_G8_UINT: D3D11
+// returns it in G (Vulkan reads it in R; the view swizzles). The hazard rule
+// holds per aspect: a view that only makes depth read-only still writes
+// stencil, so it unbinds a stencil SRV and keeps a depth SRV.
+TEST_F(RhiGpuTest, StencilIsReadInGreenAndTheHazardRuleHoldsPerAspect) {
+  ComPtr<Texture2D> texture = MakeTexture(kW, kH, DXGI_FORMAT_R24G8_TYPELESS, BIND_DEPTH_STENCIL | BIND_SHADER_RESOURCE);
+  DEPTH_STENCIL_VIEW_DESC dsvDesc{DXGI_FORMAT_D24_UNORM_S8_UINT, DSV_DIMENSION_TEXTURE2D, 0, {}};
+  ComPtr<DepthStencilView> writable, depthReadOnly;
+  ASSERT_EQ(device->CreateDepthStencilView(texture.Get(), &dsvDesc, writable.GetAddressOf()), S_OK);
+  dsvDesc.Flags = DSV_READ_ONLY_DEPTH;
+  ASSERT_EQ(device->CreateDepthStencilView(texture.Get(), &dsvDesc, depthReadOnly.GetAddressOf()), S_OK);
+  SHADER_RESOURCE_VIEW_DESC srvDesc{};
+  srvDesc.ViewDimension = SRV_DIMENSION_TEXTURE2D;
+  srvDesc.Texture2D = {0, 1};
+  srvDesc.Format = DXGI_FORMAT_R24_UNORM_X8_TYPELESS;
+  ComPtr<ShaderResourceView> depthSrv, stencilSrv;
+  ASSERT_EQ(device->CreateShaderResourceView(texture.Get(), &srvDesc, depthSrv.GetAddressOf()), S_OK);
+  srvDesc.Format = DXGI_FORMAT_X24_TYPELESS_G8_UINT;
+  ASSERT_EQ(device->CreateShaderResourceView(texture.Get(), &srvDesc, stencilSrv.GetAddressOf()), S_OK);
+
+  // Stencil 7 in columns 0-3, the clear 0 elsewhere.
+  BindTarget(nullptr, kW, kH, writable.Get());
+  context->ClearDepthStencilView(writable.Get(), CLEAR_DEPTH | CLEAR_STENCIL, 1.0f, 0);
+  DEPTH_STENCIL_DESC replace;
+  replace.DepthEnable = FALSE;
+  replace.StencilEnable = TRUE;
+  replace.FrontFace.StencilPassOp = replace.BackFace.StencilPassOp = STENCIL_OP_REPLACE;
+  ComPtr<DepthStencilState> state = DepthStencil(replace);
+  context->OMSetDepthStencilState(state.Get(), 7);
+  UseColorPipeline();
+  context->PSSetShader(nullptr, nullptr, 0);
+  DrawVertices(Quad(0, 0, 4, kH, kRed, kW, kH));
+  context->OMSetDepthStencilState(nullptr, 0);
+
+  Target out = MakeRenderTarget(kW, kH, DXGI_FORMAT_R32G32B32A32_FLOAT);
+  BindTarget(out.rtv.Get(), kW, kH);
+  ShaderResourceView* srvs[] = {depthSrv.Get(), stencilSrv.Get()};
+  context->PSSetShaderResources(0, 2, srvs);
+  ComPtr<PixelShader> ps = PS(R"(Texture2D<float> D : register(t0); Texture2D<uint4> S : register(t1);
+      float4 main(float4 pos : SV_Position) : SV_Target {
+        uint4 s = S.Load(int3(pos.xy, 0));
+        return float4(D.Load(int3(pos.xy, 0)), s.r, s.g, s.a); })");
+  DrawFullScreen(ps.Get());
+  std::vector<float> texels = ReadFloats(out.texture.Get());
+  for (UINT x = 0; x < kW; ++x) {
+    const float* t = &texels[(3 * kW + x) * 4];
+    EXPECT_EQ(t[0], 1.0f) << "depth, column " << x;
+    EXPECT_EQ(t[1], 0.0f) << "R of the stencil view, column " << x;
+    EXPECT_EQ(t[2], x < 4 ? 7.0f : 0.0f) << "stencil (G), column " << x;
+    EXPECT_EQ(t[3], 1.0f) << "A of the stencil view, column " << x;
+  }
+
+  ClearMessages();
+  BindTarget(out.rtv.Get(), kW, kH, depthReadOnly.Get());
+  EXPECT_TRUE(RefusedWith("forcing PS shader resource slot 1 to NULL"));
+  EXPECT_FALSE(RefusedWith("forcing PS shader resource slot 0 to NULL")) << "the depth SRV reads a read-only aspect";
+  EXPECT_EQ(Refusals().size(), 1u);
+}
+
 TEST_F(RhiGpuTest, DepthAsTextureRulesAreEnforcedWithReason) {
   // D3D11: a depth format is never a shader resource; the typeless family is.
   TEXTURE2D_DESC desc{4, 4, 1, 1, DXGI_FORMAT_D32_FLOAT, {1, 0}, USAGE_DEFAULT,

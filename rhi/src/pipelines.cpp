@@ -219,18 +219,6 @@ std::vector<uint32_t> MakeDualSourceOutput(const std::vector<uint32_t>& words) {
   return module.Assemble();
 }
 
-// Vulkan makes blending optional per format (float32 formats lack it on some
-// devices); D3D11's feature level 11 blends every float and UNORM target, so a
-// draw that blends a target the device cannot blend is refused, naming why.
-std::string UnblendableTarget(uint32_t slot, const states::FormatInfo& format,
-                              const VkPipelineColorBlendAttachmentState& attachment, const Gpu& gpu) {
-  if (!attachment.blendEnable || gpu.IsFormatSupported(format.vkFormat, VK_FORMAT_FEATURE_2_COLOR_ATTACHMENT_BLEND_BIT))
-    return {};
-  return "render target " + std::to_string(slot) + " (" + format.name + ") has blending enabled, but " +
-         gpu.AdapterName() + " cannot blend VkFormat " + std::to_string(format.vkFormat) +
-         " (no VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT)";
-}
-
 bool UsesDualSource(const BLEND_DESC& blend) {
   auto dual = [](BLEND b) { return b >= BLEND_SRC1_COLOR && b <= BLEND_INV_SRC1_ALPHA; };
   const auto& rt = blend.RenderTarget[0];
@@ -424,7 +412,11 @@ std::unique_ptr<GraphicsPipeline> PipelineCache::BuildGraphics(const GraphicsPip
     colorCount = i + 1;
     if (format->kind == states::ComponentKind::Uint || format->kind == states::ComponentKind::Sint)
       attachment.blendEnable = VK_FALSE;
-    if (std::string reason = UnblendableTarget(i, *format, attachment, gpu_); !reason.empty()) {
+    // (The format is asked only when the target blends.)
+    const bool formatBlends = !attachment.blendEnable ||
+                              gpu_.IsFormatSupported(format->vkFormat, VK_FORMAT_FEATURE_2_COLOR_ATTACHMENT_BLEND_BIT);
+    if (std::string reason = states::CheckBlendable(i, format->name, attachment, formatBlends, gpu_.AdapterName());
+        !reason.empty()) {
       *error = reason;
       return nullptr;
     }

@@ -103,8 +103,9 @@ void ContextImpl::SetShaderResources(ShaderStage stage, UINT start, UINT count,
     // A resource bound for writing cannot be bound for reading: D3D11 binds NULL.
     // A depth buffer behind a read-only depth-stencil view is not being written.
     if (view && IsBoundForWriting(view->resource(), view->range().aspectMask)) {
-      ReportHazard(std::string(spirv::StageName(static_cast<spirv::Stage>(stage))) + "SetShaderResources: the resource of shader resource slot " +
-                   std::to_string(start + i) + " is still bound on output; forcing it to NULL");
+      ReportHazard(std::string(spirv::StageName(static_cast<spirv::Stage>(stage))) +
+                   "SetShaderResources: the resource of shader resource slot " + std::to_string(start + i) +
+                   " is still bound on output; forcing it to NULL");
       view = nullptr;
     }
     slots[start + i] = view;

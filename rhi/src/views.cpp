@@ -29,13 +29,17 @@ void ViewTarget::Hold(Resource* resource) {
 
 namespace {
 
-// The D3D11 bind flag a view format must support for a view of this Vulkan usage.
-UINT ViewBindFlag(VkImageUsageFlags usage) {
+// The D3D11 binding a view format must support for a view of this Vulkan usage.
+struct ViewBinding {
+  UINT flag;
+  const char* name;
+};
+ViewBinding ViewBindingOf(VkImageUsageFlags usage) {
   switch (usage) {
-    case VK_IMAGE_USAGE_SAMPLED_BIT: return BIND_SHADER_RESOURCE;
-    case VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT: return BIND_RENDER_TARGET;
-    case VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT: return BIND_DEPTH_STENCIL;
-    default: return BIND_UNORDERED_ACCESS;
+    case VK_IMAGE_USAGE_SAMPLED_BIT: return {BIND_SHADER_RESOURCE, "BIND_SHADER_RESOURCE"};
+    case VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT: return {BIND_RENDER_TARGET, "BIND_RENDER_TARGET"};
+    case VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT: return {BIND_DEPTH_STENCIL, "BIND_DEPTH_STENCIL"};
+    default: return {BIND_UNORDERED_ACCESS, "BIND_UNORDERED_ACCESS"};
   }
 }
 
@@ -62,12 +66,12 @@ HRESULT ViewTarget::InitTexture(DeviceImpl& device, Resource* resource, DXGI_FOR
   const auto* info = states::GetFormatInfo(format);
   if (!info || info->kind == states::ComponentKind::Typeless)
     return gpu.Refuse(std::string(call) + ": view format " + std::to_string(format) + " must be a typed format");
-  if (!(info->bindFlags & ViewBindFlag(usage)))
-    return gpu.Refuse(std::string(call) + ": " + info->name + " cannot be the format of this kind of view (" +
-                      (usage == VK_IMAGE_USAGE_SAMPLED_BIT ? "a depth format is read through its R*_FLOAT / "
-                                                             "R24_UNORM_X8_TYPELESS member"
-                                                           : "the format lacks that binding") +
-                      ")");
+  if (const ViewBinding binding = ViewBindingOf(usage); !(info->bindFlags & binding.flag))
+    return gpu.Refuse(std::string(call) + ": " + info->name + " cannot be the format of this kind of view (it does not "
+                      "support " + binding.name + ")" +
+                      (info->kind == states::ComponentKind::Depth
+                           ? "; shaders read a depth texture through R32_FLOAT, R24_UNORM_X8_TYPELESS or R16_UNORM"
+                           : ""));
   if (!states::IsViewCompatible(shape.format, format))
     return gpu.Refuse(std::string(call) + ": view format " + info->name + " cannot view a resource of format " +
                       states::FormatName(shape.format) +

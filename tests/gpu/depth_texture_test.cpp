@@ -194,7 +194,8 @@ TEST_F(RhiGpuTest, MultisampledDepthIsReadPerSampleThroughTexture2DMS) {
 // holds per aspect: a view that only makes depth read-only still writes
 // stencil, so it unbinds a stencil SRV and keeps a depth SRV.
 TEST_F(RhiGpuTest, StencilIsReadInGreenAndTheHazardRuleHoldsPerAspect) {
-  ComPtr<Texture2D> texture = MakeTexture(kW, kH, DXGI_FORMAT_R24G8_TYPELESS, BIND_DEPTH_STENCIL | BIND_SHADER_RESOURCE);
+  ComPtr<Texture2D> texture =
+      MakeTexture(kW, kH, DXGI_FORMAT_R24G8_TYPELESS, BIND_DEPTH_STENCIL | BIND_SHADER_RESOURCE);
   DEPTH_STENCIL_VIEW_DESC dsvDesc{DXGI_FORMAT_D24_UNORM_S8_UINT, DSV_DIMENSION_TEXTURE2D, 0, {}};
   ComPtr<DepthStencilView> writable, depthReadOnly;
   ASSERT_EQ(device->CreateDepthStencilView(texture.Get(), &dsvDesc, writable.GetAddressOf()), S_OK);

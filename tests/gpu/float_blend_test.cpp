@@ -66,7 +66,8 @@ TEST_P(FloatBlendTest, MinMaxIgnoreTheFactorsAndKeepTheExtremeOfEveryFragment) {
   ComPtr<BlendState> blend = Blend(desc);
   context->OMSetBlendState(blend.Get(), nullptr, DEFAULT_SAMPLE_MASK);
   UseColorPipeline();
-  ComPtr<PixelShader> ps = PS("float4 main(float4 pos : SV_Position) : SV_Target { return float4(-pos.z, pos.z, 0, 1); }");
+  ComPtr<PixelShader> ps =
+      PS("float4 main(float4 pos : SV_Position) : SV_Target { return float4(-pos.z, pos.z, 0, 1); }");
   context->PSSetShader(ps.Get(), nullptr, 0);
   BindTarget(target.rtv.Get(), kW, kH);
   for (const DepthQuad& q : kQuads) DrawVertices(Quad(q.x0, q.y0, q.x1, q.y1, kWhite, kW, kH, q.z));

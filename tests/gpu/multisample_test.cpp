@@ -222,8 +222,8 @@ TEST_P(CoverageTest, InputCoverageIsTheMaskOfCoveredSamples) {
   if (!Supported()) GTEST_SKIP() << "no " << samples() << "x R32_FLOAT target on " << device->GetAdapterName();
   MsTarget target = MakeMsTarget();
   Clear(target.rtv.Get(), {-1, -1, -1, -1});
-  // glslang's HLSL front end drops an SV_Coverage input declared as a plain
-  // parameter (it reads OpUndef); as a member of the input struct it arrives.
+  // A member of the input struct: glslang's HLSL front end drops an SV_Coverage
+  // input declared as a plain parameter, which the compiler therefore refuses.
   ComPtr<PixelShader> ps = PS(R"(
     struct PSIn { float4 pos : SV_Position; uint coverage : SV_Coverage; };
     float4 main(PSIn i) : SV_Target { return float(i.coverage).xxxx; })");

@@ -372,6 +372,49 @@ INSTANTIATE_TEST_SUITE_P(OitFormats, ResolveTest,
                          ::testing::Combine(::testing::ValuesIn(kOitFormats), ::testing::ValuesIn(kCounts)),
                          ParamName);
 
+// Multisampled arrays: an RTV of one slice (RTV_DIMENSION_TEXTURE2DMSARRAY), a
+// Texture2DMSArray SRV reading every slice and sample, and CaptureTexture2D of
+// one slice (its subresource is the slice).
+TEST_F(RhiGpuTest, MultisampledArraySlicesAreWrittenReadAndResolvedSeparately) {
+  TEXTURE2D_DESC desc{4, 4, 1, 3, DXGI_FORMAT_R32_FLOAT, {4, 0}, USAGE_DEFAULT,
+                      BIND_RENDER_TARGET | BIND_SHADER_RESOURCE, 0, 0};
+  ComPtr<Texture2D> array;
+  ASSERT_EQ(device->CreateTexture2D(&desc, nullptr, array.GetAddressOf()), S_OK);
+  for (UINT slice = 0; slice < 3; ++slice) {
+    RENDER_TARGET_VIEW_DESC rtvDesc{DXGI_FORMAT_R32_FLOAT, RTV_DIMENSION_TEXTURE2DMSARRAY, {}};
+    rtvDesc.Texture2DMSArray = {slice, 1};
+    ComPtr<RenderTargetView> rtv;
+    ASSERT_EQ(device->CreateRenderTargetView(array.Get(), &rtvDesc, rtv.GetAddressOf()), S_OK);
+    const float value = 10.0f * float(slice + 1);
+    Clear(rtv.Get(), {value, value, value, value});
+  }
+  SHADER_RESOURCE_VIEW_DESC srvDesc{};
+  srvDesc.Format = DXGI_FORMAT_R32_FLOAT;
+  srvDesc.ViewDimension = SRV_DIMENSION_TEXTURE2DMSARRAY;
+  srvDesc.Texture2DMSArray = {1, 2};  // slices 1 and 2
+  ComPtr<ShaderResourceView> srv;
+  ASSERT_EQ(device->CreateShaderResourceView(array.Get(), &srvDesc, srv.GetAddressOf()), S_OK);
+  // Texel (x, y) of the 8x4 output: slice x / 4 of the view, sample x % 4, of pixel (0, y).
+  Target out = MakeRenderTarget(8, 4, DXGI_FORMAT_R32_FLOAT);
+  BindTarget(out.rtv.Get(), 8, 4);
+  ShaderResourceView* srvs[] = {srv.Get()};
+  context->PSSetShaderResources(0, 1, srvs);
+  ComPtr<PixelShader> ps = PS(R"(Texture2DMSArray<float> T : register(t0);
+      float4 main(float4 pos : SV_Position) : SV_Target {
+        uint x = uint(pos.x);
+        return T.Load(int3(0, pos.y, x / 4), x % 4).xxxx; })");
+  DrawFullScreen(ps.Get());
+  const std::vector<float> texels = ReadFloats(out.texture.Get());
+  for (UINT y = 0; y < 4; ++y)
+    for (UINT x = 0; x < 8; ++x) EXPECT_EQ(texels[y * 8 + x], x < 4 ? 20.0f : 30.0f) << "texel " << x << "," << y;
+  std::vector<uint8_t> slice2;
+  ASSERT_EQ(CaptureTexture2D(device.Get(), context.Get(), array.Get(), 2, &slice2), S_OK);
+  float first;
+  std::memcpy(&first, slice2.data(), 4);
+  EXPECT_EQ(slice2.size(), 4u * 4 * 4);
+  EXPECT_EQ(first, 30.0f);
+}
+
 // What has no average is refused with the reason: integer and depth formats,
 // in ResolveSubresource and in CaptureTexture2D.
 TEST_F(RhiGpuTest, IntegerAndDepthMultisampledTexturesHaveNoResolve) {

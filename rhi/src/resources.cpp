@@ -371,6 +371,9 @@ std::string TextureStorage::CheckSampleCount(const Gpu& gpu, const VkImageCreate
   const VkSampleCountFlags counts = gpu.ImageSampleCounts(info);
   if (counts & info.samples) return {};
   const char* call = shape_.dimension == RESOURCE_DIMENSION_TEXTURE1D ? "CreateTexture1D" : "CreateTexture2D";
+  if (counts == 0)
+    return std::string(call) + ": " + gpu.AdapterName() + " cannot create a " + states::FormatName(shape_.format) +
+           " texture with BindFlags " + Hex(shape_.bindFlags) + " at any sample count";
   return std::string(call) + ": SampleDesc.Count " + std::to_string(shape_.samples) + " is not supported for " +
          states::FormatName(shape_.format) + " with BindFlags " + Hex(shape_.bindFlags) + " on " +
          gpu.AdapterName() + " (supported counts: " + SampleCountList(counts) +

@@ -71,8 +71,9 @@ HRESULT LoadShaderCode(DeviceImpl& device, const void* bytecode, SIZE_T length, 
       ((expected == ShaderStage::Hull || expected == ShaderStage::Domain) && !gpu.Caps().tessellationShader))
     return gpu.Refuse(std::string(call) + ": " + gpu.AdapterName() + " has no " + StageName(expected) + " shaders");
   if (expected == ShaderStage::Pixel && RunsPerSample(code->reflection) && !gpu.Caps().sampleRateShading)
-    return gpu.Refuse(std::string(call) + ": the shader reads SV_SampleIndex, so it runs once per sample, which "
-                      "needs Vulkan's sampleRateShading feature; " + gpu.AdapterName() + " lacks it");
+    return gpu.Refuse(std::string(call) +
+                      ": the shader reads SV_SampleIndex (or the sample position), so it runs once per sample, "
+                      "which needs Vulkan's sampleRateShading feature; " + gpu.AdapterName() + " lacks it");
   // D3D11's SV_InstanceID counts from 0 in every draw; Vulkan's InstanceIndex includes firstInstance.
   if (expected == ShaderStage::Vertex) code->words = spirv::RebaseInstanceIndex(code->words).value;
   code->serial = device.NextSerial();

@@ -8,14 +8,40 @@
 
 namespace rhi {
 
+namespace {
+
+// Resolves array slice `slice` of the multisampled `source` (D3D11's average of
+// the samples) into a new single-sampled texture, or refuses what has no average.
+HRESULT Resolve(Device* device, DeviceContext* context, Texture2D* source, UINT slice, Texture2D** out) {
+  const vk::Gpu& gpu = static_cast<vk::DeviceImpl*>(device)->gpu();
+  TEXTURE2D_DESC desc;
+  source->GetDesc(&desc);
+  const states::FormatInfo* format = states::GetFormatInfo(desc.Format);
+  const std::string what = std::string("CaptureTexture2D: the texture is multisampled (SampleDesc.Count ") +
+                           std::to_string(desc.SampleDesc.Count) + ") and " + format->name;
+  if (format->kind == states::ComponentKind::Uint || format->kind == states::ComponentKind::Sint)
+    return gpu.Refuse(what + " is an integer format, which has no resolve (average of samples); read the samples "
+                             "through a Texture2DMS view");
+  if (format->isDepth || format->kind == states::ComponentKind::Depth || (desc.BindFlags & BIND_DEPTH_STENCIL))
+    return gpu.Refuse(what + " is a depth format, which has no resolve; read the samples through a Texture2DMS view");
+  if (format->kind == states::ComponentKind::Typeless)
+    return gpu.Refuse(what + " is typeless: resolve it with ResolveSubresource and a typed Format first");
+  desc.ArraySize = 1;
+  desc.SampleDesc = {1, 0};
+  desc.BindFlags = 0;
+  desc.MiscFlags = 0;
+  if (HRESULT hr = device->CreateTexture2D(&desc, nullptr, out); FAILED(hr)) return hr;
+  context->ResolveSubresource(*out, 0, source, slice, desc.Format);
+  return S_OK;
+}
+
+}  // namespace
+
 HRESULT CaptureTexture2D(Device* device, DeviceContext* context, Texture2D* source, UINT subresource,
                          std::vector<uint8_t>* texels) {
   const vk::Gpu& gpu = static_cast<vk::DeviceImpl*>(device)->gpu();
   TEXTURE2D_DESC desc;
   source->GetDesc(&desc);
-  if (desc.SampleDesc.Count != 1)
-    return gpu.Refuse("CaptureTexture2D: the texture is multisampled (SampleDesc.Count " +
-                      std::to_string(desc.SampleDesc.Count) + "); resolve it with ResolveSubresource first");
   if (subresource >= desc.MipLevels * desc.ArraySize)
     return gpu.Refuse("CaptureTexture2D: subresource " + std::to_string(subresource) + " is out of range (" +
                       std::to_string(desc.MipLevels * desc.ArraySize) + " subresources)");
@@ -27,6 +53,13 @@ HRESULT CaptureTexture2D(Device* device, DeviceContext* context, Texture2D* sour
   desc.BindFlags = 0;
   desc.CPUAccessFlags = CPU_ACCESS_READ;
   desc.MiscFlags = 0;
+  ComPtr<Texture2D> resolved;
+  if (desc.SampleDesc.Count > 1) {
+    if (HRESULT hr = Resolve(device, context, source, subresource, resolved.GetAddressOf()); FAILED(hr)) return hr;
+    source = resolved.Get();
+    subresource = 0;
+    desc.SampleDesc = {1, 0};
+  }
   ComPtr<Texture2D> staging;
   if (HRESULT hr = device->CreateTexture2D(&desc, nullptr, staging.GetAddressOf()); FAILED(hr)) return hr;
   context->CopySubresourceRegion(staging.Get(), 0, 0, 0, 0, source, subresource, nullptr);

@@ -36,6 +36,10 @@ class ShaderCode;
 class QueryImpl;
 class QueryTracker;
 
+// The aspects of its texture that draws may write through `view`: a
+// DSV_READ_ONLY_DEPTH / _STENCIL view writes none of that aspect.
+VkImageAspectFlags WrittenAspects(const DepthStencilViewImpl& view);
+
 class ContextImpl final : public DeviceContext {
  public:
   explicit ContextImpl(DeviceImpl* device);
@@ -194,11 +198,12 @@ class ContextImpl final : public DeviceContext {
   void SetSamplers(ShaderStage stage, UINT start, UINT count, SamplerState* const* samplers);
   void EmitBarriers();
   using UavSlots = std::array<Bound<UnorderedAccessViewImpl>, PS_CS_UAV_REGISTER_COUNT>;
-  // D3D11's hazard rule: a resource bound for writing leaves every read
-  // binding, and every UAV slot (of either pipeline). `call`, when given, names
-  // the UAV binding call that reports each shader-resource slot it empties (the
-  // D3D11 debug layer's "Forcing ... to NULL" warning).
-  void UnbindFromReads(Resource* resource, const char* call = nullptr);
+  // D3D11's hazard rule: a resource bound for writing leaves every read binding
+  // and every UAV slot (of either pipeline), with a warning for each read binding
+  // it empties (DEVICE_*_HAZARD), naming `call`. `aspects`: those the output
+  // writes; shader-resource views of other aspects stay bound.
+  void UnbindFromReads(Resource* resource, const char* call, VkImageAspectFlags aspects = ~VkImageAspectFlags{0});
+  void ReportHazard(const std::string& text);
   // Compute UAVs for the compute stage, output-merger UAVs for the graphics stages.
   const UavSlots& UavsOf(ShaderStage stage) const {
     return stage == ShaderStage::Compute ? computeUavs_ : graphicsUavs_;
@@ -209,7 +214,10 @@ class ContextImpl final : public DeviceContext {
                 const UINT* initialCounts, bool unbindOthers, const char* call);
   // Sets a view's hidden counter on the GPU (pUAVInitialCounts); UINT(-1) keeps it.
   void SetUavCounter(UnorderedAccessViewImpl& view, UINT count);
-  void BindRenderTargets(UINT count, RenderTargetView* const* views, DepthStencilView* depth);
+  // OMSetRenderTargets and OMSetRenderTargetsAndUnorderedAccessViews; `call` names the one used.
+  void SetOutputMerger(const char* call, UINT numRtvs, RenderTargetView* const* rtvs, DepthStencilView* dsv,
+                       UINT uavStart, UINT numUavs, UnorderedAccessView* const* uavs, const UINT* initialCounts);
+  void BindRenderTargets(const char* call, UINT count, RenderTargetView* const* views, DepthStencilView* depth);
   // The resources in the output merger's slots after such a call: the new
   // views, or the bound ones where NumRTVs / NumUAVs are KEEP_*.
   struct OutputMergerSlots {
@@ -224,7 +232,7 @@ class ContextImpl final : public DeviceContext {
   // Why OMSetRenderTargetsAndUnorderedAccessViews must ignore these arguments, or "".
   std::string CheckOutputMergerBinding(UINT numRtvs, RenderTargetView* const* rtvs, DepthStencilView* dsv,
                                        UINT uavStart, UINT numUavs, UnorderedAccessView* const* uavs) const;
-  bool IsBoundForWriting(Resource* resource) const;
+  bool IsBoundForWriting(Resource* resource, VkImageAspectFlags aspects = ~VkImageAspectFlags{0}) const;
   // Render targets and depth-stencil views are texture-only: a buffer is written
   // only through stream output and UAVs (the IA setters' check, on every draw).
   bool IsBoundForWriting(const BufferImpl* buffer) const;

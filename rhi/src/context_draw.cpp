@@ -94,9 +94,14 @@ void ContextImpl::BeginRendering() {
     depth.imageView = view->imageView();
     depth.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
     depth.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     hasStencil = view->texture().aspects() & VK_IMAGE_ASPECT_STENCIL_BIT;
     stencil = depth;
+    // A read-only aspect is not stored: the instance writes nothing there, so
+    // shaders may sample it while it is depth- or stencil-tested.
+    const VkImageAspectFlags written = WrittenAspects(*view);
+    depth.storeOp = written & VK_IMAGE_ASPECT_DEPTH_BIT ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_NONE;
+    stencil.storeOp =
+        written & VK_IMAGE_ASPECT_STENCIL_BIT ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_NONE;
     grow(view->texture(), view->range());
   }
   if (extent.width == 0) {
@@ -149,7 +154,8 @@ const GraphicsPipeline* ContextImpl::LookUpPipeline(const char* call) {
   inputs.rasterizer = &RasterizerDescOf(rasterizer_.Get());
   for (uint32_t i = 0; i < renderTargets_.size(); ++i)
     inputs.colorFormats[i] = static_cast<DXGI_FORMAT>(pipelineKey_.colorFormats[i]);
-  inputs.depthFormat = static_cast<DXGI_FORMAT>(pipelineKey_.depthFormat);
+  inputs.depthFormat = static_cast<VkFormat>(pipelineKey_.depthFormat);
+  inputs.dsvFlags = pipelineKey_.dsvFlags;
   inputs.samples = pipelineKey_.samples;
   inputs.sampleMask = sampleMask_;
   inputs.topology = topology_;
@@ -185,7 +191,10 @@ void ContextImpl::TrackDrawResources(const char* call, const GraphicsPipeline& p
   const uint64_t instance = restart ? renderingInstance_ + 1 : renderingInstance_;
   for (auto& view : renderTargets_)
     if (view) Use(view->texture(), uses::kColorAttachment, instance);
-  if (depthStencil_) Use(depthStencil_->texture(), uses::kDepthAttachment, instance);
+  if (depthStencil_) {
+    const bool writes = WrittenAspects(*depthStencil_) != 0;
+    Use(depthStencil_->texture(), writes ? uses::kDepthAttachment : uses::kDepthAttachmentRead, writes ? instance : 0);
+  }
   FlushBarriers();
   if (restart) {
     ++renderingInstance_;

@@ -7,6 +7,7 @@
 #include "queries.h"
 #include "resources.h"
 #include "shaders.h"
+#include "spirv/reflection.h"
 #include "state_objects.h"
 #include "views.h"
 
@@ -109,14 +110,14 @@ void ContextImpl::SetShaderResources(ShaderStage stage, UINT start, UINT count,
   auto& slots = stages_[static_cast<uint32_t>(stage)].shaderResources;
   for (UINT i = 0; i < count && start + i < slots.size(); ++i) {
     auto* view = static_cast<ShaderResourceViewImpl*>(views ? views[i] : nullptr);
-    // A resource bound for writing cannot be bound for reading: D3D11 binds NULL
-    // (and its debug layer warns about UAVs).
-    if (view && IsBoundForWriting(view->resource())) {
-      if (IsBoundAsUav(view->resource()))
-        device_->gpu().Report(MESSAGE_CATEGORY_STATE_SETTING, MESSAGE_SEVERITY_WARNING,
-                              std::string(StagePrefix(stage)) + "SetShaderResources: the resource of slot " +
-                                  std::to_string(start + i) +
-                                  " is bound as an unordered access view; forcing the slot to NULL");
+    // A resource bound for writing cannot be bound for reading: D3D11 binds NULL.
+    // A depth buffer behind a read-only depth-stencil view is not being written.
+    if (view && IsBoundForWriting(view->resource(), view->range().aspectMask)) {
+      ReportHazard(std::string(spirv::StageName(static_cast<spirv::Stage>(stage))) +
+                   "SetShaderResources: the resource of shader resource slot " + std::to_string(start + i) +
+                   (IsBoundAsUav(view->resource()) ? " is bound as an unordered access view"
+                                                   : " is still bound on output") +
+                   "; forcing it to NULL");
       view = nullptr;
     }
     slots[start + i] = view;
@@ -180,7 +181,7 @@ void ContextImpl::SOSetTargets(UINT NumBuffers, Buffer* const* ppSOTargets, cons
       ReportDrawError("SOSetTargets: buffer " + std::to_string(i) + " lacks BIND_STREAM_OUTPUT; bound as NULL");
       buffer = nullptr;
     }
-    if (buffer) UnbindFromReads(buffer);
+    if (buffer) UnbindFromReads(buffer, "SOSetTargets");
     const UINT offset = buffer && pOffsets ? pOffsets[i] : 0;
     streamOut_[i] = {buffer, offset, buffer && offset != UINT(-1)};
   }
@@ -217,8 +218,8 @@ void ContextImpl::RSSetScissorRects(UINT NumRects, const RECT* pRects) {
 // with no UAVs from slot NumViews on: the pixel-shader UAVs are unbound.
 void ContextImpl::OMSetRenderTargets(UINT NumViews, RenderTargetView* const* ppRenderTargetViews,
                                      DepthStencilView* pDepthStencilView) {
-  OMSetRenderTargetsAndUnorderedAccessViews(NumViews, ppRenderTargetViews, pDepthStencilView, NumViews, 0, nullptr,
-                                            nullptr);
+  SetOutputMerger("OMSetRenderTargets", NumViews, ppRenderTargetViews, pDepthStencilView, NumViews, 0, nullptr,
+                  nullptr);
 }
 
 void ContextImpl::OMSetRenderTargetsAndUnorderedAccessViews(UINT NumRTVs, RenderTargetView* const* ppRenderTargetViews,
@@ -226,17 +227,19 @@ void ContextImpl::OMSetRenderTargetsAndUnorderedAccessViews(UINT NumRTVs, Render
                                                             UINT NumUAVs,
                                                             UnorderedAccessView* const* ppUnorderedAccessViews,
                                                             const UINT* pUAVInitialCounts) {
-  if (std::string reason = CheckOutputMergerBinding(NumRTVs, ppRenderTargetViews, pDepthStencilView, UAVStartSlot,
-                                                    NumUAVs, ppUnorderedAccessViews);
-      !reason.empty()) {
-    ReportDrawError("OMSetRenderTargetsAndUnorderedAccessViews: " + reason + "; the call is ignored");
+  SetOutputMerger("OMSetRenderTargetsAndUnorderedAccessViews", NumRTVs, ppRenderTargetViews, pDepthStencilView,
+                  UAVStartSlot, NumUAVs, ppUnorderedAccessViews, pUAVInitialCounts);
+}
+
+void ContextImpl::SetOutputMerger(const char* call, UINT numRtvs, RenderTargetView* const* rtvs, DepthStencilView* dsv,
+                                  UINT uavStart, UINT numUavs, UnorderedAccessView* const* uavs,
+                                  const UINT* initialCounts) {
+  if (std::string reason = CheckOutputMergerBinding(numRtvs, rtvs, dsv, uavStart, numUavs, uavs); !reason.empty()) {
+    ReportDrawError(std::string(call) + ": " + reason + "; the call is ignored");
     return;
   }
-  if (NumRTVs != KEEP_RENDER_TARGETS_AND_DEPTH_STENCIL)
-    BindRenderTargets(NumRTVs, ppRenderTargetViews, pDepthStencilView);
-  if (NumUAVs != KEEP_UNORDERED_ACCESS_VIEWS)
-    BindUavs(graphicsUavs_, UAVStartSlot, NumUAVs, ppUnorderedAccessViews, pUAVInitialCounts, true,
-             "OMSetRenderTargetsAndUnorderedAccessViews");
+  if (numRtvs != KEEP_RENDER_TARGETS_AND_DEPTH_STENCIL) BindRenderTargets(call, numRtvs, rtvs, dsv);
+  if (numUavs != KEEP_UNORDERED_ACCESS_VIEWS) BindUavs(graphicsUavs_, uavStart, numUavs, uavs, initialCounts, true, call);
 }
 
 ContextImpl::OutputMergerSlots ContextImpl::SlotsAfter(UINT numRtvs, RenderTargetView* const* rtvs,
@@ -309,14 +312,15 @@ void ContextImpl::OMGetRenderTargetsAndUnorderedAccessViews(UINT NumRTVs, Render
                                                                         : nullptr;
 }
 
-void ContextImpl::BindRenderTargets(UINT count, RenderTargetView* const* views, DepthStencilView* depthView) {
+void ContextImpl::BindRenderTargets(const char* call, UINT count, RenderTargetView* const* views,
+                                    DepthStencilView* depthView) {
   for (UINT i = 0; i < SIMULTANEOUS_RENDER_TARGET_COUNT; ++i) {
     auto* view = i < count && views ? static_cast<RenderTargetViewImpl*>(views[i]) : nullptr;
-    if (view) UnbindFromReads(view->resource());
+    if (view) UnbindFromReads(view->resource(), call);
     renderTargets_[i] = view;
   }
   auto* depth = static_cast<DepthStencilViewImpl*>(depthView);
-  if (depth) UnbindFromReads(depth->resource());
+  if (depth) UnbindFromReads(depth->resource(), call, WrittenAspects(*depth));
   depthStencil_ = depth;
   SetTargetsKey();
   renderTargetsChanged_ = true;
@@ -327,10 +331,11 @@ void ContextImpl::SetTargetsKey() {
   key.samples = 1;
   for (uint32_t i = 0; i < renderTargets_.size(); ++i) {
     key.colorFormats[i] = renderTargets_[i] ? renderTargets_[i]->format() : DXGI_FORMAT_UNKNOWN;
-    if (renderTargets_[i]) key.samples = renderTargets_[i]->texture().shape().samples;
+    if (renderTargets_[i]) key.samples = static_cast<uint16_t>(renderTargets_[i]->texture().shape().samples);
   }
-  key.depthFormat = depthStencil_ ? depthStencil_->texture().shape().format : DXGI_FORMAT_UNKNOWN;
-  if (depthStencil_) key.samples = depthStencil_->texture().shape().samples;
+  key.depthFormat = depthStencil_ ? depthStencil_->texture().vkFormat() : VK_FORMAT_UNDEFINED;
+  key.dsvFlags = depthStencil_ ? static_cast<uint16_t>(depthStencil_->desc().Flags) : 0;
+  if (depthStencil_) key.samples = static_cast<uint16_t>(depthStencil_->texture().shape().samples);
   PipelineStateChanged();
 }
 
@@ -362,11 +367,19 @@ void ContextImpl::OMSetDepthStencilState(DepthStencilState* pDepthStencilState, 
   dynamicDirty_.stencilRef = true;
 }
 
-bool ContextImpl::IsBoundForWriting(Resource* resource) const {
+VkImageAspectFlags WrittenAspects(const DepthStencilViewImpl& view) {
+  VkImageAspectFlags aspects = view.texture().aspects();
+  if (view.desc().Flags & DSV_READ_ONLY_DEPTH) aspects &= ~VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT);
+  if (view.desc().Flags & DSV_READ_ONLY_STENCIL) aspects &= ~VkImageAspectFlags(VK_IMAGE_ASPECT_STENCIL_BIT);
+  return aspects;
+}
+
+bool ContextImpl::IsBoundForWriting(Resource* resource, VkImageAspectFlags aspects) const {
   if (!resource) return false;
   for (const auto& view : renderTargets_)
     if (view && view->resource() == resource) return true;
-  if (depthStencil_ && depthStencil_->resource() == resource) return true;
+  if (depthStencil_ && depthStencil_->resource() == resource && (WrittenAspects(*depthStencil_) & aspects))
+    return true;
   return IsBoundForStreamOutOrUav(resource);
 }
 
@@ -387,28 +400,37 @@ bool ContextImpl::IsBoundAsUav(const Resource* resource) const {
   return false;
 }
 
-void ContextImpl::UnbindFromReads(Resource* resource, const char* call) {
+void ContextImpl::UnbindFromReads(Resource* resource, const char* call, VkImageAspectFlags aspects) {
   for (UavSlots* slots : {&computeUavs_, &graphicsUavs_})
     for (auto& view : *slots)
       if (view && view->resource() == resource) view.Reset();
-  for (auto& binding : vertexBuffers_)
-    if (binding.buffer.Get() == resource) {
-      binding = {};
+  const std::string prefix = std::string(call) + ": the resource being bound for output is still bound on input; ";
+  for (UINT slot = 0; slot < vertexBuffers_.size(); ++slot)
+    if (vertexBuffers_[slot].buffer.Get() == resource) {
+      vertexBuffers_[slot] = {};
       vertexBuffersDirty_ = true;
+      ReportHazard(prefix + "forcing vertex buffer slot " + std::to_string(slot) + " to NULL");
     }
-  if (indexBuffer_.buffer.Get() == resource) indexBuffer_ = {};
-  for (auto& stage : stages_) {
-    for (auto& cb : stage.constantBuffers)
-      if (cb.Get() == resource) cb.Reset();
-    for (size_t slot = 0; slot < stage.shaderResources.size(); ++slot) {
-      auto& view = stage.shaderResources[slot];
-      if (!view || view->resource() != resource) continue;
-      view.Reset();
-      if (call)
-        device_->gpu().Report(MESSAGE_CATEGORY_STATE_SETTING, MESSAGE_SEVERITY_WARNING,
-                              std::string(call) + ": forcing " + StagePrefix(static_cast<ShaderStage>(&stage - stages_.data())) +
-                                  " shader resource slot " + std::to_string(slot) +
-                                  " to NULL: its resource is now bound as an unordered access view");
+  if (indexBuffer_.buffer.Get() == resource) {
+    indexBuffer_ = {};
+    ReportHazard(prefix + "forcing the index buffer to NULL");
+  }
+  for (uint32_t stage = 0; stage < kShaderStageCount; ++stage) {
+    // spirv::Stage lists the stages in ShaderStage's order.
+    const std::string stageName = spirv::StageName(static_cast<spirv::Stage>(stage));
+    auto& state = stages_[stage];
+    for (UINT slot = 0; slot < state.constantBuffers.size(); ++slot)
+      if (state.constantBuffers[slot].Get() == resource) {
+        state.constantBuffers[slot].Reset();
+        ReportHazard(prefix + "forcing " + stageName + " constant buffer slot " + std::to_string(slot) + " to NULL");
+      }
+    // A texture's shader-resource view reads one aspect; a read-only depth-stencil view writes neither.
+    for (UINT slot = 0; slot < state.shaderResources.size(); ++slot) {
+      const auto& view = state.shaderResources[slot];
+      if (view && view->resource() == resource && (view->buffer() || (view->range().aspectMask & aspects))) {
+        state.shaderResources[slot].Reset();
+        ReportHazard(prefix + "forcing " + stageName + " shader resource slot " + std::to_string(slot) + " to NULL");
+      }
     }
   }
   descriptorsDirty_ = true;
@@ -437,6 +459,10 @@ void ContextImpl::ClearState() {
   stencilRef_ = 0;
   renderTargetsChanged_ = descriptorsDirty_ = vertexBuffersDirty_ = true;
   dynamicDirty_.All();
+}
+
+void ContextImpl::ReportHazard(const std::string& text) {
+  device_->gpu().Report(MESSAGE_CATEGORY_STATE_SETTING, MESSAGE_SEVERITY_WARNING, text);
 }
 
 void ContextImpl::ReportDrawError(const std::string& text) {

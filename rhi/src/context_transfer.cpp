@@ -417,12 +417,39 @@ void ContextImpl::CopySubresourceRegion(Resource* pDstResource, UINT DstSubresou
   }
 }
 
+namespace {
+
+// D3D11's ResolveSubresource rules; empty when the resolve may go ahead.
+std::string ResolveRefusal(const TextureStorage* dst, UINT dstSub, const TextureStorage* src, UINT srcSub,
+                           DXGI_FORMAT format) {
+  if (!dst || !src || src->shape().samples < 2 || dst->shape().samples != 1)
+    return "needs a multisampled source and a single-sampled destination";
+  if (dstSub >= dst->subresourceCount() || srcSub >= src->subresourceCount()) return "a subresource is out of range";
+  const VkExtent3D from = src->MipExtent(0), to = dst->MipExtent(dstSub % dst->shape().mipLevels);
+  if (from.width != to.width || from.height != to.height) return "source and destination sizes differ";
+  const auto* info = states::GetFormatInfo(format);
+  if (!info || info->kind == states::ComponentKind::Typeless)
+    return "Format must be a typed format";
+  // The resolve averages the samples: integers and depth have no average in D3D11.
+  if (info->kind == states::ComponentKind::Uint || info->kind == states::ComponentKind::Sint ||
+      info->kind == states::ComponentKind::Depth || info->isDepth)
+    return std::string(info->name) + " cannot be resolved (integer and depth formats have no average)";
+  if (!states::IsViewCompatible(src->shape().format, format) || !states::IsViewCompatible(dst->shape().format, format))
+    return std::string(info->name) + " is not compatible with both resources' formats";
+  // vkCmdResolveImage reads and writes the images' own formats.
+  if (src->vkFormat() != info->vkFormat || dst->vkFormat() != info->vkFormat)
+    return std::string("resolving a typeless resource as ") + info->name + " is not supported by this backend";
+  return {};
+}
+
+}  // namespace
+
 void ContextImpl::ResolveSubresource(Resource* pDstResource, UINT DstSubresource, Resource* pSrcResource,
-                                     UINT SrcSubresource, DXGI_FORMAT) {
+                                     UINT SrcSubresource, DXGI_FORMAT Format) {
   TextureStorage* dst = AsTexture(pDstResource);
   TextureStorage* src = AsTexture(pSrcResource);
-  if (!dst || !src || src->shape().samples < 2 || dst->shape().samples != 1) {
-    ReportDrawError("ResolveSubresource: needs a multisampled source and a single-sampled destination");
+  if (std::string reason = ResolveRefusal(dst, DstSubresource, src, SrcSubresource, Format); !reason.empty()) {
+    ReportDrawError("ResolveSubresource: " + reason + "; nothing is resolved");
     return;
   }
   EndRendering();

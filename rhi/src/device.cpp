@@ -10,6 +10,7 @@
 #include "state_objects.h"
 #include "states/blend.h"
 #include "states/depth_stencil.h"
+#include "states/formats.h"
 #include "states/rasterizer.h"
 #include "states/sampler.h"
 #include "views.h"
@@ -100,11 +101,24 @@ HRESULT DeviceImpl::CreateTexture2D(const TEXTURE2D_DESC* pDesc, const SUBRESOUR
   TextureShape shape{RESOURCE_DIMENSION_TEXTURE2D, pDesc->Width,          pDesc->Height,
                      pDesc->MipLevels,             pDesc->ArraySize,      pDesc->SampleDesc.Count,
                      pDesc->Format,                pDesc->Usage,          pDesc->BindFlags,
-                     pDesc->CPUAccessFlags,        pDesc->MiscFlags};
+                     pDesc->CPUAccessFlags,        pDesc->MiscFlags,      pDesc->SampleDesc.Quality};
   Texture2DImpl* texture = nullptr;
   HRESULT hr = CreateTexture(this, *pDesc, shape, pInitialData, &texture);
   if (SUCCEEDED(hr)) *ppTexture2D = texture;
   return hr;
+}
+
+HRESULT DeviceImpl::CheckMultisampleQualityLevels(DXGI_FORMAT Format, UINT SampleCount, UINT* pNumQualityLevels) {
+  if (!pNumQualityLevels) return gpu_->Refuse("CheckMultisampleQualityLevels: pNumQualityLevels is NULL");
+  *pNumQualityLevels = 0;
+  const auto* info = states::GetFormatInfo(Format);
+  if (!info || info->kind == states::ComponentKind::Typeless)
+    return gpu_->Refuse("CheckMultisampleQualityLevels: Format " + std::to_string(Format) +
+                        " is not a typed format");
+  if (SampleCount == 0 || SampleCount > MAX_MULTISAMPLE_SAMPLE_COUNT || (SampleCount & (SampleCount - 1))) return S_OK;
+  // Vulkan has one pattern per count (the standard one): one quality level.
+  if (TargetSampleCounts(*gpu_, Format) & SampleCount) *pNumQualityLevels = 1;
+  return S_OK;
 }
 
 HRESULT DeviceImpl::CreateShaderResourceView(Resource* pResource, const SHADER_RESOURCE_VIEW_DESC* pDesc,

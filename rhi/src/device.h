@@ -60,6 +60,7 @@ class DeviceImpl final : public Device {
                                 RasterizerState** ppRasterizerState) override;
   HRESULT CreateSamplerState(const SAMPLER_DESC* pSamplerDesc, SamplerState** ppSamplerState) override;
   HRESULT CreateQuery(const QUERY_DESC* pQueryDesc, Query** ppQuery) override;
+  HRESULT CheckMultisampleQualityLevels(DXGI_FORMAT Format, UINT SampleCount, UINT* pNumQualityLevels) override;
   void GetImmediateContext(DeviceContext** ppImmediateContext) override;
   const char* GetAdapterName() override { return gpu_->AdapterName().c_str(); }
 

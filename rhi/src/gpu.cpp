@@ -259,6 +259,7 @@ HRESULT Gpu::CreateLogicalDevice() {
   caps_.dualSourceBlend = supported.features.dualSrcBlend;
   caps_.fragmentStoresAndAtomics = supported.features.fragmentStoresAndAtomics;
   caps_.vertexPipelineStoresAndAtomics = supported.features.vertexPipelineStoresAndAtomics;
+  caps_.sampleRateShading = supported.features.sampleRateShading;
 
   if (caps_.transformFeedback) {
     VkPhysicalDeviceTransformFeedbackPropertiesEXT xfbProps{
@@ -365,6 +366,20 @@ bool Gpu::IsFormatSupported(VkFormat format, VkFormatFeatureFlags2 features, boo
   vkGetPhysicalDeviceFormatProperties2(physical_, format, &props);
   VkFormatFeatureFlags2 have = optimalTiling ? props3.optimalTilingFeatures : props3.bufferFeatures;
   return (have & features) == features;
+}
+
+VkSampleCountFlags Gpu::ImageSampleCounts(const VkImageCreateInfo& info) const {
+  VkPhysicalDeviceImageFormatInfo2 query{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_IMAGE_FORMAT_INFO_2};
+  // A format list narrows what a mutable-format image may be viewed as, and so what it supports.
+  query.pNext = info.pNext;
+  query.format = info.format;
+  query.type = info.imageType;
+  query.tiling = info.tiling;
+  query.usage = info.usage;
+  query.flags = info.flags;
+  VkImageFormatProperties2 properties{VK_STRUCTURE_TYPE_IMAGE_FORMAT_PROPERTIES_2};
+  if (vkGetPhysicalDeviceImageFormatProperties2(physical_, &query, &properties) != VK_SUCCESS) return 0;
+  return properties.imageFormatProperties.sampleCounts;
 }
 
 std::unique_ptr<Gpu::Submission> Gpu::AcquireSubmission() {

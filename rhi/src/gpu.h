@@ -34,6 +34,7 @@ struct GpuCapabilities {
   bool dualSourceBlend = false;
   bool fragmentStoresAndAtomics = false;        // pixel-shader UAVs
   bool vertexPipelineStoresAndAtomics = false;  // UAVs in VS, HS, DS, GS
+  bool sampleRateShading = false;  // SV_SampleIndex / per-sample pixel shaders
   float timestampPeriodNs = 1.0f;
   VkPhysicalDeviceLimits limits{};
 };
@@ -64,6 +65,9 @@ class Gpu {
   VkResult AllocateFor(VkMemoryRequirements requirements, VkMemoryPropertyFlags properties,
                        VkDeviceMemory* memory) const;
   bool IsFormatSupported(VkFormat format, VkFormatFeatureFlags2 features, bool optimalTiling = true) const;
+  // The sample counts an image of `info` (format, type, tiling, usage, flags) may
+  // have; 0 when the device cannot create it at all.
+  VkSampleCountFlags ImageSampleCounts(const VkImageCreateInfo& info) const;
 
   // Submission. Commands are recorded into the current command buffer; each
   // submission gets a serial, and resources remember the serial of their last use.

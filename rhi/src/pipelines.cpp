@@ -329,7 +329,7 @@ std::unique_ptr<GraphicsPipeline> PipelineCache::BuildGraphics(const GraphicsPip
   // D3D11 rasterizes nothing when no pixel shader and no depth test would use
   // it, when stream output rasterizes no stream, or when nothing writes a position.
   const DEPTH_STENCIL_DESC& ds = *in.depthStencil;
-  const bool depthUsed = in.depthFormat != DXGI_FORMAT_UNKNOWN && (ds.DepthEnable || ds.StencilEnable);
+  const bool depthUsed = in.depthFormat != VK_FORMAT_UNDEFINED && (ds.DepthEnable || ds.StencilEnable);
   pipeline->rasterizes = (stages[4] || depthUsed) && stages[lastGeometryStage]->reflection.writesPosition &&
                          !(pipeline->streamOutput && pipeline->streamOutput->rasterizedStream == SO_NO_RASTERIZED_STREAM);
 
@@ -412,6 +412,14 @@ std::unique_ptr<GraphicsPipeline> PipelineCache::BuildGraphics(const GraphicsPip
     colorCount = i + 1;
     if (format->kind == states::ComponentKind::Uint || format->kind == states::ComponentKind::Sint)
       attachment.blendEnable = VK_FALSE;
+    // (The format is asked only when the target blends.)
+    const bool formatBlends = !attachment.blendEnable ||
+                              gpu_.IsFormatSupported(format->vkFormat, VK_FORMAT_FEATURE_2_COLOR_ATTACHMENT_BLEND_BIT);
+    if (std::string reason = states::CheckBlendable(i, format->name, attachment, formatBlends, gpu_.AdapterName());
+        !reason.empty()) {
+      *error = reason;
+      return nullptr;
+    }
     if (format->alphaIsOne) states::AdjustForMissingAlpha(attachment);
   }
   VkPipelineColorBlendStateCreateInfo colorBlend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
@@ -419,20 +427,17 @@ std::unique_ptr<GraphicsPipeline> PipelineCache::BuildGraphics(const GraphicsPip
   colorBlend.pAttachments = blend.attachments.data();
 
   VkPipelineDepthStencilStateCreateInfo depthStencil = states::ToVulkan(ds);
-  const auto* depthFormat = states::GetFormatInfo(in.depthFormat);
-  VkFormat vkDepthFormat = VK_FORMAT_UNDEFINED;
-  bool hasStencil = false;
-  if (depthFormat) {
-    vkDepthFormat = states::PickDepthFormat(in.depthFormat, [&](VkFormat f) {
-      return gpu_.IsFormatSupported(f, VK_FORMAT_FEATURE_2_DEPTH_STENCIL_ATTACHMENT_BIT);
-    });
-    hasStencil = vkDepthFormat == VK_FORMAT_D24_UNORM_S8_UINT || vkDepthFormat == VK_FORMAT_D32_SFLOAT_S8_UINT ||
-                 vkDepthFormat == VK_FORMAT_D16_UNORM_S8_UINT;
-  } else {
+  const VkFormat vkDepthFormat = in.depthFormat;
+  const bool hasStencil = vkDepthFormat == VK_FORMAT_D24_UNORM_S8_UINT ||
+                          vkDepthFormat == VK_FORMAT_D32_SFLOAT_S8_UINT || vkDepthFormat == VK_FORMAT_D16_UNORM_S8_UINT;
+  if (vkDepthFormat == VK_FORMAT_UNDEFINED) {
     // D3D11: with no depth-stencil view bound, the depth and stencil tests pass.
     depthStencil.depthTestEnable = depthStencil.depthWriteEnable = VK_FALSE;
   }
   if (!hasStencil) depthStencil.stencilTestEnable = VK_FALSE;
+  // D3D11 drops the writes a read-only depth-stencil view does not allow; the tests still run.
+  if (in.dsvFlags & DSV_READ_ONLY_DEPTH) depthStencil.depthWriteEnable = VK_FALSE;
+  if (in.dsvFlags & DSV_READ_ONLY_STENCIL) depthStencil.front.writeMask = depthStencil.back.writeMask = 0;
 
   std::vector<VkDynamicState> dynamicStates = {
       VK_DYNAMIC_STATE_STENCIL_REFERENCE, VK_DYNAMIC_STATE_BLEND_CONSTANTS, VK_DYNAMIC_STATE_PRIMITIVE_TOPOLOGY,

@@ -24,8 +24,9 @@ struct GraphicsPipelineKey {
   uint64_t inputLayout = 0;
   uint64_t blend = 0, depthStencil = 0, rasterizer = 0;  // serials, 0: D3D11 default
   std::array<uint32_t, SIMULTANEOUS_RENDER_TARGET_COUNT> colorFormats{};  // DXGI formats
-  uint32_t depthFormat = 0;
-  uint32_t samples = 1;
+  uint32_t depthFormat = 0;  // the VkFormat of the bound depth-stencil view's image (0: none)
+  uint16_t samples = 1;
+  uint16_t dsvFlags = 0;  // DSV_READ_ONLY_* of the bound depth-stencil view: those writes are dropped
   uint32_t sampleMask = 0;
   uint32_t topologyClass = 0;  // VkPrimitiveTopology class representative, or patch control points + 100
   bool operator==(const GraphicsPipelineKey&) const = default;
@@ -86,7 +87,8 @@ struct GraphicsPipelineInputs {
   const DEPTH_STENCIL_DESC* depthStencil = nullptr;
   const RASTERIZER_DESC* rasterizer = nullptr;
   std::array<DXGI_FORMAT, SIMULTANEOUS_RENDER_TARGET_COUNT> colorFormats{};
-  DXGI_FORMAT depthFormat = DXGI_FORMAT_UNKNOWN;
+  VkFormat depthFormat = VK_FORMAT_UNDEFINED;  // the depth-stencil view's image format
+  UINT dsvFlags = 0;
   uint32_t samples = 1;
   uint32_t sampleMask = DEFAULT_SAMPLE_MASK;
   PRIMITIVE_TOPOLOGY topology = PRIMITIVE_TOPOLOGY_UNDEFINED;

@@ -207,12 +207,28 @@ std::string ValidateTextureShape(const TextureShape& s, const SUBRESOURCE_DATA* 
     return where + "SampleDesc.Count " + std::to_string(s.samples) + " is not a power of two up to 32";
   if (s.samples > 1 && s.mipLevels != 1) return where + "multisampled textures must have MipLevels 1";
   if (s.samples > 1 && s.usage != USAGE_DEFAULT) return where + "multisampled textures must be USAGE_DEFAULT";
+  if (s.samples > 1 && (s.bindFlags & BIND_UNORDERED_ACCESS))
+    return where + "multisampled textures cannot have BIND_UNORDERED_ACCESS";
+  if (s.samples > 1 && initialData && initialData->pSysMem)
+    return where + "multisampled textures cannot be initialized with data";
+  // One quality level per supported count (CheckMultisampleQualityLevels): 0,
+  // or the standard pattern, which Vulkan's standard sample locations are.
+  if (s.sampleQuality != 0 && !(s.samples > 1 && s.sampleQuality == STANDARD_MULTISAMPLE_PATTERN))
+    return where + "SampleDesc.Quality " + Hex(s.sampleQuality) + " is not available for SampleDesc.Count " +
+           std::to_string(s.samples) +
+           " (quality levels: 1, so Quality must be 0 or D3D11_STANDARD_MULTISAMPLE_PATTERN for counts above 1)";
   if (s.bindFlags & (BIND_VERTEX_BUFFER | BIND_INDEX_BUFFER | BIND_CONSTANT_BUFFER | BIND_STREAM_OUTPUT))
     return where + "textures cannot be bound as vertex, index, constant or stream-output buffers";
   if ((s.bindFlags & BIND_DEPTH_STENCIL) && !format->isDepth && format->kind != states::ComponentKind::Typeless)
     return where + "BIND_DEPTH_STENCIL needs a depth or typeless format";
   if ((s.bindFlags & BIND_RENDER_TARGET) && format->isDepth)
     return where + "BIND_RENDER_TARGET cannot use a depth format";
+  // D3D11: a depth format cannot be read by shaders; a depth buffer that is
+  // also a shader resource is created typeless and viewed through typed views.
+  if ((s.bindFlags & BIND_SHADER_RESOURCE) && format->kind == states::ComponentKind::Depth)
+    return where + "BIND_SHADER_RESOURCE cannot use " + format->name +
+           "; create the texture with its typeless format (R32_TYPELESS, R24G8_TYPELESS, R16_TYPELESS) and view "
+           "it through a depth-stencil view and a shader-resource view";
   if (s.usage == USAGE_IMMUTABLE && (!initialData || !initialData->pSysMem))
     return where + "USAGE_IMMUTABLE requires initial data";
   if (s.usage == USAGE_STAGING && s.bindFlags) return where + "USAGE_STAGING cannot have bind flags";
@@ -254,13 +270,12 @@ HRESULT TextureStorage::Initialize(DeviceImpl& device, const TextureShape& shape
   if (std::string reason = ValidateTextureShape(shape_, initialData, call); !reason.empty())
     return device.gpu().Refuse(reason);
   const auto* format = states::GetFormatInfo(shape_.format);
-  // Depth formats fall back (D24S8 -> D32S8) where the device lacks them.
-  vkFormat_ = format->isDepth || (shape_.bindFlags & BIND_DEPTH_STENCIL)
-                  ? states::PickDepthFormat(shape_.format, [&](VkFormat f) {
-                      return device.gpu().IsFormatSupported(f, VK_FORMAT_FEATURE_2_DEPTH_STENCIL_ATTACHMENT_BIT);
-                    })
-                  : format->vkFormat;
   const bool depth = format->isDepth || (shape_.bindFlags & BIND_DEPTH_STENCIL);
+  vkFormat_ = format->vkFormat;
+  if (depth) {
+    if (std::string reason = PickDepthImageFormat(device.gpu()); !reason.empty())
+      return device.gpu().Refuse(std::string(call) + ": " + reason);
+  }
   aspects_ = depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
   if (depth && (vkFormat_ == VK_FORMAT_D24_UNORM_S8_UINT || vkFormat_ == VK_FORMAT_D32_SFLOAT_S8_UINT ||
                 vkFormat_ == VK_FORMAT_D16_UNORM_S8_UINT))
@@ -310,6 +325,7 @@ HRESULT TextureStorage::CreateImage(DeviceImpl& device) {
     formatList.pViewFormats = viewFormats.data();
     info.pNext = &formatList;
   }
+  if (std::string reason = CheckSampleCount(gpu, info); !reason.empty()) return gpu.Refuse(reason);
   VkResult result = vkCreateImage(gpu.Device(), &info, nullptr, &image_);
   if (result != VK_SUCCESS)
     return gpu.Refuse(std::string("vkCreateImage failed for this texture: ") + ResultName(result));
@@ -320,6 +336,67 @@ HRESULT TextureStorage::CreateImage(DeviceImpl& device) {
   if (result != VK_SUCCESS) return ToHresult(result);
   device.context().InitializeImageLayout(*this);
   return S_OK;
+}
+
+std::string TextureStorage::PickDepthImageFormat(const Gpu& gpu) {
+  // Depth formats fall back (D24S8 -> D32S8) where the device lacks them; a
+  // depth buffer that shaders read must also be sampleable.
+  VkFormatFeatureFlags2 needed = VK_FORMAT_FEATURE_2_DEPTH_STENCIL_ATTACHMENT_BIT;
+  if (shape_.bindFlags & BIND_SHADER_RESOURCE) needed |= VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_BIT;
+  vkFormat_ = states::PickDepthFormat(shape_.format, [&](VkFormat f) { return gpu.IsFormatSupported(f, needed); });
+  if (vkFormat_ != VK_FORMAT_UNDEFINED) return {};
+  std::string tried;
+  for (VkFormat candidate : states::DepthFormatCandidates(shape_.format))
+    tried += (tried.empty() ? "VkFormat " : ", ") + std::to_string(candidate);
+  return gpu.AdapterName() + " has no depth format for " + states::FormatName(shape_.format) +
+         ((shape_.bindFlags & BIND_SHADER_RESOURCE) ? " that is both a depth-stencil attachment and sampled"
+                                                    : " as a depth-stencil attachment") +
+         " (tried " + (tried.empty() ? std::string("none") : tried) + ")";
+}
+
+namespace {
+
+std::string SampleCountList(VkSampleCountFlags counts) {
+  std::string list;
+  for (VkSampleCountFlags bit = 1; bit <= counts; bit <<= 1)
+    if (counts & bit) list += (list.empty() ? "" : ", ") + std::to_string(bit);
+  return list.empty() ? "none" : list;
+}
+
+}  // namespace
+
+std::string TextureStorage::CheckSampleCount(const Gpu& gpu, const VkImageCreateInfo& info) const {
+  // D3D11 refuses a count CheckMultisampleQualityLevels reports 0 levels for;
+  // Vulkan decides per format, usage and flags, so the image's own are asked.
+  const VkSampleCountFlags counts = gpu.ImageSampleCounts(info);
+  if (counts & info.samples) return {};
+  const char* call = shape_.dimension == RESOURCE_DIMENSION_TEXTURE1D ? "CreateTexture1D" : "CreateTexture2D";
+  if (counts == 0)
+    return std::string(call) + ": " + gpu.AdapterName() + " cannot create a " + states::FormatName(shape_.format) +
+           " texture with BindFlags " + Hex(shape_.bindFlags) + " at any sample count";
+  return std::string(call) + ": SampleDesc.Count " + std::to_string(shape_.samples) + " is not supported for " +
+         states::FormatName(shape_.format) + " with BindFlags " + Hex(shape_.bindFlags) + " on " +
+         gpu.AdapterName() + " (supported counts: " + SampleCountList(counts) +
+         "; CheckMultisampleQualityLevels reports 0 quality levels)";
+}
+
+VkSampleCountFlags TargetSampleCounts(const Gpu& gpu, DXGI_FORMAT format) {
+  const auto* info = states::GetFormatInfo(format);
+  if (!info || info->kind == states::ComponentKind::Typeless) return 0;
+  VkImageCreateInfo image{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  image.imageType = VK_IMAGE_TYPE_2D;
+  image.tiling = VK_IMAGE_TILING_OPTIMAL;
+  image.format = info->vkFormat;
+  image.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+  if (info->kind == states::ComponentKind::Depth) {
+    image.format = states::PickDepthFormat(format, [&](VkFormat f) {
+      return gpu.IsFormatSupported(f, VK_FORMAT_FEATURE_2_DEPTH_STENCIL_ATTACHMENT_BIT);
+    });
+    image.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+  } else if (!(info->bindFlags & BIND_RENDER_TARGET)) {
+    return 0;
+  }
+  return image.format == VK_FORMAT_UNDEFINED ? 0 : gpu.ImageSampleCounts(image);
 }
 
 HRESULT TextureStorage::CreateStagingBuffer(DeviceImpl& device) {

@@ -1,6 +1,7 @@
 // Buffers and textures.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "device.h"
@@ -63,7 +64,13 @@ struct TextureShape {
   DXGI_FORMAT format = DXGI_FORMAT_UNKNOWN;
   USAGE usage = USAGE_DEFAULT;
   UINT bindFlags = 0, cpuAccessFlags = 0, miscFlags = 0;
+  UINT sampleQuality = 0;  // DXGI_SAMPLE_DESC::Quality
 };
+
+// The sample counts a render target (a depth-stencil for depth formats) of
+// `format` may have on `gpu`, as a VkSampleCountFlags mask; 0 for formats that
+// cannot be either. CheckMultisampleQualityLevels answers from it.
+VkSampleCountFlags TargetSampleCounts(const Gpu& gpu, DXGI_FORMAT format);
 
 class TextureStorage : public TrackedResource {
  public:
@@ -88,6 +95,10 @@ class TextureStorage : public TrackedResource {
 
  private:
   HRESULT CreateImage(DeviceImpl& device);
+  // Picks vkFormat_ for a texture used as depth-stencil; empty, or the reason there is none.
+  std::string PickDepthImageFormat(const Gpu& gpu);
+  // Empty when the device can create `info` with the shape's sample count, else the reason.
+  std::string CheckSampleCount(const Gpu& gpu, const VkImageCreateInfo& info) const;
   // The VkFormats views of a typeless colour texture may use; empty when views keep the image's format.
   std::vector<VkFormat> FamilyViewFormats() const;
   HRESULT CreateStagingBuffer(DeviceImpl& device);

@@ -47,6 +47,15 @@ std::string CheckUavSupport(const Gpu& gpu, ShaderStage stage, const spirv::Refl
          gpu.AdapterName() + " lacks " + (pixel ? "fragmentStoresAndAtomics" : "vertexPipelineStoresAndAtomics");
 }
 
+// A pixel shader that reads SV_SampleIndex (Vulkan's SampleId) or the sample
+// position runs per sample, in D3D11 as in Vulkan.
+bool RunsPerSample(const spirv::Reflection& reflection) {
+  static constexpr uint32_t kBuiltInSampleId = 18, kBuiltInSamplePosition = 19;
+  return std::any_of(reflection.inputs.begin(), reflection.inputs.end(), [](const spirv::InterfaceVariable& input) {
+    return input.builtIn == kBuiltInSampleId || input.builtIn == kBuiltInSamplePosition;
+  });
+}
+
 template <class Interface>
 HRESULT CreateShaderObject(DeviceImpl& device, const void* bytecode, SIZE_T length, ClassLinkage* linkage,
                            ShaderStage stage, const char* call, Interface** out) {
@@ -91,6 +100,10 @@ HRESULT LoadShaderCode(DeviceImpl& device, const void* bytecode, SIZE_T length, 
     return gpu.Refuse(std::string(call) + ": " + gpu.AdapterName() + " has no " + StageName(expected) + " shaders");
   if (std::string reason = CheckUavSupport(gpu, code->stage, code->reflection); !reason.empty())
     return gpu.Refuse(std::string(call) + ": " + reason);
+  if (expected == ShaderStage::Pixel && RunsPerSample(code->reflection) && !gpu.Caps().sampleRateShading)
+    return gpu.Refuse(std::string(call) +
+                      ": the shader reads SV_SampleIndex (or the sample position), so it runs once per sample, "
+                      "which needs Vulkan's sampleRateShading feature; " + gpu.AdapterName() + " lacks it");
   // D3D11's SV_InstanceID counts from 0 in every draw; Vulkan's InstanceIndex includes firstInstance.
   if (expected == ShaderStage::Vertex) code->words = spirv::RebaseInstanceIndex(code->words).value;
   code->serial = device.NextSerial();

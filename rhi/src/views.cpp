@@ -27,6 +27,34 @@ void ViewTarget::Hold(Resource* resource) {
   resourceHold_ = Bound<Bindable>(dynamic_cast<Bindable*>(resource));
 }
 
+namespace {
+
+// The D3D11 binding a view format must support for a view of this Vulkan usage.
+struct ViewBinding {
+  UINT flag;
+  const char* name;
+};
+ViewBinding ViewBindingOf(VkImageUsageFlags usage) {
+  switch (usage) {
+    case VK_IMAGE_USAGE_SAMPLED_BIT: return {BIND_SHADER_RESOURCE, "BIND_SHADER_RESOURCE"};
+    case VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT: return {BIND_RENDER_TARGET, "BIND_RENDER_TARGET"};
+    case VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT: return {BIND_DEPTH_STENCIL, "BIND_DEPTH_STENCIL"};
+    default: return {BIND_UNORDERED_ACCESS, "BIND_UNORDERED_ACCESS"};
+  }
+}
+
+// D3D11: the *MS view dimensions are for multisampled textures and only they.
+std::string CheckSampleDimension(Resource* resource, bool multisampledView, const char* call) {
+  const TextureStorage* texture = AsTexture(resource);
+  if (!texture || (texture->shape().samples > 1) == multisampledView) return {};
+  return std::string(call) + ": " +
+         (multisampledView ? "a *_TEXTURE2DMS* ViewDimension needs a multisampled texture (SampleDesc.Count > 1)"
+                           : "a multisampled texture (SampleDesc.Count " + std::to_string(texture->shape().samples) +
+                                 ") needs a *_TEXTURE2DMS or *_TEXTURE2DMSARRAY ViewDimension");
+}
+
+}  // namespace
+
 HRESULT ViewTarget::InitTexture(DeviceImpl& device, Resource* resource, DXGI_FORMAT format, VkImageViewType type,
                                 VkImageSubresourceRange range, VkImageUsageFlags usage, const char* call) {
   Gpu& gpu = device.gpu();
@@ -38,6 +66,12 @@ HRESULT ViewTarget::InitTexture(DeviceImpl& device, Resource* resource, DXGI_FOR
   const auto* info = states::GetFormatInfo(format);
   if (!info || info->kind == states::ComponentKind::Typeless)
     return gpu.Refuse(std::string(call) + ": view format " + std::to_string(format) + " must be a typed format");
+  if (const ViewBinding binding = ViewBindingOf(usage); !(info->bindFlags & binding.flag))
+    return gpu.Refuse(std::string(call) + ": " + info->name + " cannot be the format of this kind of view (it does not "
+                      "support " + binding.name + ")" +
+                      (info->kind == states::ComponentKind::Depth
+                           ? "; shaders read a depth texture through R32_FLOAT, R24_UNORM_X8_TYPELESS or R16_UNORM"
+                           : ""));
   if (!states::IsViewCompatible(shape.format, format))
     return gpu.Refuse(std::string(call) + ": view format " + info->name + " cannot view a resource of format " +
                       states::FormatName(shape.format) +
@@ -118,6 +152,15 @@ VkImageAspectFlags ColorOrDepth(const TextureStorage& texture) {
   return (texture.aspects() & VK_IMAGE_ASPECT_DEPTH_BIT) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
 }
 
+// The one aspect a shader-resource view of `format` reads: a depth image's
+// stencil for the stencil formats (X24_TYPELESS_G8_UINT), else its depth.
+VkImageAspectFlags ReadAspect(const TextureStorage& texture, DXGI_FORMAT format) {
+  const auto* info = states::GetFormatInfo(format == DXGI_FORMAT_UNKNOWN ? texture.shape().format : format);
+  const bool stencil = info && info->hasStencil && !info->isDepth;
+  return stencil && (texture.aspects() & VK_IMAGE_ASPECT_STENCIL_BIT) ? VK_IMAGE_ASPECT_STENCIL_BIT
+                                                                       : ColorOrDepth(texture);
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------
@@ -138,7 +181,14 @@ HRESULT ShaderResourceViewImpl::Initialize(Resource* resource) {
   }
   TextureStorage* texture = AsTexture(resource);
   if (!texture) return dev.gpu().Refuse("CreateShaderResourceView: ViewDimension does not match a buffer");
-  VkImageSubresourceRange range{ColorOrDepth(*texture), 0, 1, 0, 1};
+  if (!(texture->shape().bindFlags & BIND_SHADER_RESOURCE))
+    return dev.gpu().Refuse("CreateShaderResourceView: the texture lacks BIND_SHADER_RESOURCE");
+  const bool multisampledView =
+      d.ViewDimension == SRV_DIMENSION_TEXTURE2DMS || d.ViewDimension == SRV_DIMENSION_TEXTURE2DMSARRAY;
+  if (std::string reason = CheckSampleDimension(resource, multisampledView, "CreateShaderResourceView");
+      !reason.empty())
+    return dev.gpu().Refuse(reason);
+  VkImageSubresourceRange range{ReadAspect(*texture, d.Format), 0, 1, 0, 1};
   bool isArray = false, cube = false;
   switch (d.ViewDimension) {
     case SRV_DIMENSION_TEXTURE1D:
@@ -207,6 +257,11 @@ HRESULT RenderTargetViewImpl::Initialize(Resource* resource) {
   TextureStorage* texture = AsTexture(resource);
   if (texture && !(texture->shape().bindFlags & BIND_RENDER_TARGET))
     return device().gpu().Refuse("CreateRenderTargetView: the texture lacks BIND_RENDER_TARGET");
+  const bool multisampledView =
+      d.ViewDimension == RTV_DIMENSION_TEXTURE2DMS || d.ViewDimension == RTV_DIMENSION_TEXTURE2DMSARRAY;
+  if (std::string reason = CheckSampleDimension(resource, multisampledView, "CreateRenderTargetView");
+      !reason.empty())
+    return device().gpu().Refuse(reason);
   RESOURCE_DIMENSION dimension = texture ? texture->shape().dimension : RESOURCE_DIMENSION_TEXTURE2D;
   return InitTexture(device(), resource, d.Format, ViewType(dimension, isArray, false), range,
                      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, "CreateRenderTargetView");
@@ -231,10 +286,28 @@ HRESULT DepthStencilViewImpl::Initialize(Resource* resource) {
       isArray = true;
       break;
     case DSV_DIMENSION_TEXTURE2DMS: break;
+    case DSV_DIMENSION_TEXTURE2DMSARRAY:
+      range.baseArrayLayer = d.Texture2DMSArray.FirstArraySlice;
+      range.layerCount = d.Texture2DMSArray.ArraySize;
+      isArray = true;
+      break;
     default:
       return device().gpu().Refuse("CreateDepthStencilView: ViewDimension " + std::to_string(d.ViewDimension) +
                                    " is not supported");
   }
+  const bool multisampledView =
+      d.ViewDimension == DSV_DIMENSION_TEXTURE2DMS || d.ViewDimension == DSV_DIMENSION_TEXTURE2DMSARRAY;
+  if (std::string reason = CheckSampleDimension(resource, multisampledView, "CreateDepthStencilView");
+      !reason.empty())
+    return device().gpu().Refuse(reason);
+  if (d.Flags & ~UINT(DSV_READ_ONLY_DEPTH | DSV_READ_ONLY_STENCIL))
+    return device().gpu().Refuse("CreateDepthStencilView: Flags " + std::to_string(d.Flags) +
+                                 " has bits other than DSV_READ_ONLY_DEPTH and DSV_READ_ONLY_STENCIL");
+  const DXGI_FORMAT format = d.Format == DXGI_FORMAT_UNKNOWN ? texture->shape().format : d.Format;
+  const auto* info = states::GetFormatInfo(format);
+  if ((d.Flags & DSV_READ_ONLY_STENCIL) && info && !info->hasStencil)
+    return device().gpu().Refuse(std::string("CreateDepthStencilView: DSV_READ_ONLY_STENCIL needs a format with "
+                                             "stencil; ") + info->name + " has none");
   return InitTexture(device(), resource, d.Format, ViewType(texture->shape().dimension, isArray, false), range,
                      VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, "CreateDepthStencilView");
 }

@@ -62,6 +62,7 @@ class ViewImpl final : public DeviceChildImpl<Interface>, public ViewTarget {
     *ppResource = resource();
   }
   void GetDesc(Desc* desc) override { *desc = desc_; }
+  const Desc& desc() const { return desc_; }
   // Attachments index into textures only.
   TextureStorage& texture() const { return *ViewTarget::texture(); }
 

@@ -123,6 +123,51 @@ RhiGpuTest::DepthTarget RhiGpuTest::MakeDepthTarget(UINT width, UINT height, DXG
   return target;
 }
 
+ComPtr<Texture2D> RhiGpuTest::MakeTexture(UINT width, UINT height, DXGI_FORMAT format, UINT bindFlags, UINT samples) {
+  TEXTURE2D_DESC desc{width, height, 1, 1, format, {samples, 0}, USAGE_DEFAULT, bindFlags, 0, 0};
+  ComPtr<Texture2D> texture;
+  EXPECT_EQ(device->CreateTexture2D(&desc, nullptr, texture.GetAddressOf()), S_OK);
+  return texture;
+}
+
+void RhiGpuTest::DrawFullScreen(PixelShader* ps) {
+  if (!fullScreenVS_)
+    fullScreenVS_ = VS(R"(float4 main(uint id : SV_VertexID) : SV_Position {
+        return float4(float(id & 1) * 4 - 1, 1 - float(id & 2) * 2, 0.5, 1); })");
+  context->IASetInputLayout(nullptr);
+  context->IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLELIST);
+  context->VSSetShader(fullScreenVS_.Get(), nullptr, 0);
+  context->PSSetShader(ps, nullptr, 0);
+  context->Draw(3, 0);
+}
+
+std::vector<float> RhiGpuTest::ReadSamples(ShaderResourceView* srv, UINT width, UINT height, UINT samples,
+                                           const char* type) {
+  // Sample s of pixel (x, y) lands in texel (x * samples + s, y) of a float4 target.
+  ComPtr<Texture2D> out = MakeTexture(width * samples, height, DXGI_FORMAT_R32G32B32A32_FLOAT, BIND_RENDER_TARGET);
+  ComPtr<RenderTargetView> rtv;
+  EXPECT_EQ(device->CreateRenderTargetView(out.Get(), nullptr, rtv.GetAddressOf()), S_OK);
+  const std::string source = std::string("Texture2DMS<") + type + "> S : register(t0);\n" +
+                             "float4 main(float4 pos : SV_Position) : SV_Target {\n"
+                             "  uint x = uint(pos.x);\n"
+                             "  return (float4)S.Load(int2(x / " + std::to_string(samples) + ", pos.y), x % " +
+                             std::to_string(samples) + ");\n}\n";
+  ComPtr<PixelShader> ps = PS(source);
+  context->ClearState();
+  BindTarget(rtv.Get(), width * samples, height);
+  context->PSSetShaderResources(0, 1, &srv);
+  DrawFullScreen(ps.Get());
+  context->ClearState();
+  return ReadFloats(out.Get());
+}
+
+std::vector<float> RhiGpuTest::ReadFloats(Texture2D* texture) {
+  std::vector<uint8_t> bytes = ReadTexture(texture);
+  std::vector<float> values(bytes.size() / sizeof(float));
+  std::memcpy(values.data(), bytes.data(), values.size() * sizeof(float));
+  return values;
+}
+
 ComPtr<BlendState> RhiGpuTest::Blend(const BLEND_DESC& desc) {
   ComPtr<BlendState> state;
   EXPECT_EQ(device->CreateBlendState(&desc, state.GetAddressOf()), S_OK);

@@ -88,11 +88,25 @@ class RhiGpuTest : public GpuTest {
   };
   DepthTarget MakeDepthTarget(UINT width, UINT height, rhi::DXGI_FORMAT format, UINT samples = 1);
 
+  // A width x height texture of `format` with `bindFlags` and `samples` samples.
+  ComPtr<rhi::Texture2D> MakeTexture(UINT width, UINT height, rhi::DXGI_FORMAT format, UINT bindFlags,
+                                     UINT samples = 1);
+  // Every sample of the width x height multisampled texture `srv` views, read
+  // with Texture2DMS<`type`>.Load in a pixel shader and widened to float4:
+  // element ((y * width + x) * samples + s) * 4 + c. Leaves the context cleared (ClearState).
+  std::vector<float> ReadSamples(rhi::ShaderResourceView* srv, UINT width, UINT height, UINT samples,
+                                 const char* type = "float4");
+  // The texels of an R32_FLOAT, R32G32_FLOAT or R32G32B32A32_FLOAT texture (resolved if multisampled).
+  std::vector<float> ReadFloats(rhi::Texture2D* texture);
+  // Draws a triangle covering the whole viewport with `ps` and no input layout.
+  void DrawFullScreen(rhi::PixelShader* ps);
+
   ComPtr<rhi::BlendState> Blend(const rhi::BLEND_DESC& desc);
   ComPtr<rhi::DepthStencilState> DepthStencil(const rhi::DEPTH_STENCIL_DESC& desc);
   ComPtr<rhi::RasterizerState> Rasterizer(const rhi::RASTERIZER_DESC& desc);
   ComPtr<rhi::SamplerState> PointSampler();
 
+  ComPtr<rhi::VertexShader> fullScreenVS_;
   ComPtr<rhi::VertexShader> colorVS_;
   ComPtr<rhi::PixelShader> colorPS_;
   ComPtr<rhi::InputLayout> colorLayout_;

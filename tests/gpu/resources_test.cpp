@@ -230,11 +230,13 @@ TEST_F(ResourceTest, CaptureTexture2DPacksRowsAndRefusesWhatItCannotRead) {
 
   EXPECT_EQ(CaptureTexture2D(device.Get(), context.Get(), mipped.Get(), 2, &texels), E_INVALIDARG);
   EXPECT_TRUE(RefusedWith("CaptureTexture2D: subresource 2 is out of range (2 subresources)"));
-  TEXTURE2D_DESC msDesc{4, 4, 1, 1, DXGI_FORMAT_R8G8B8A8_UNORM, {4, 0}, USAGE_DEFAULT, BIND_RENDER_TARGET, 0, 0};
+  // A multisampled texture is resolved first; an integer one has no resolve.
+  TEXTURE2D_DESC msDesc{4, 4, 1, 1, DXGI_FORMAT_R8G8B8A8_UINT, {4, 0}, USAGE_DEFAULT, BIND_RENDER_TARGET, 0, 0};
   ComPtr<Texture2D> multisampled;
   ASSERT_EQ(device->CreateTexture2D(&msDesc, nullptr, multisampled.GetAddressOf()), S_OK);
   EXPECT_EQ(CaptureTexture2D(device.Get(), context.Get(), multisampled.Get(), 0, &texels), E_INVALIDARG);
-  EXPECT_TRUE(RefusedWith("the texture is multisampled (SampleDesc.Count 4); resolve it"));
+  EXPECT_TRUE(RefusedWith("the texture is multisampled (SampleDesc.Count 4) and DXGI_FORMAT_R8G8B8A8_UINT is an "
+                          "integer format, which has no resolve"));
 }
 
 TEST_F(ResourceTest, UpdateSubresourceOnTextureRegionHonoursBoxAndSourceRowPitch) {

@@ -738,12 +738,12 @@ TEST_F(UavTest, BindingAUavUnbindsItsResourceFromShaderResourceSlots) {
   context->VSSetShaderResources(2, 1, srvs);
   context->PSSetShaderResources(0, 1, srvs);
   BindUav(buffer.uav.Get());
-  EXPECT_TRUE(RefusedWith("OMSetRenderTargetsAndUnorderedAccessViews: forcing VS shader resource slot 2 to NULL"));
-  EXPECT_TRUE(RefusedWith("OMSetRenderTargetsAndUnorderedAccessViews: forcing PS shader resource slot 0 to NULL"));
+  EXPECT_TRUE(RefusedWith("OMSetRenderTargetsAndUnorderedAccessViews: the resource being bound for output is still bound on input; forcing VS shader resource slot 2 to NULL"));
+  EXPECT_TRUE(RefusedWith("OMSetRenderTargetsAndUnorderedAccessViews: the resource being bound for output is still bound on input; forcing PS shader resource slot 0 to NULL"));
   // While it is a UAV, an SRV of it binds NULL, with the warning.
   ClearMessages();
   context->PSSetShaderResources(3, 1, srvs);
-  EXPECT_TRUE(RefusedWith("PSSetShaderResources: the resource of slot 3 is bound as an unordered access view"));
+  EXPECT_TRUE(RefusedWith("PSSetShaderResources: the resource of shader resource slot 3 is bound as an unordered access view"));
   // The compute stage takes the UAV away from the output merger.
   context->CSSetUnorderedAccessViews(0, 1, buffer.uav.GetAddressOf(), nullptr);
   EXPECT_EQ(BoundUav(1).Get(), nullptr);

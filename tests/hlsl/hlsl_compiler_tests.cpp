@@ -304,6 +304,24 @@ TEST(HlslProfiles, MissingEntryPointIsAnError) {
   EXPECT_EQ(r.FormatErrors(), "test.hlsl: error: entry point 'NotThere' not found\n");
 }
 
+// glslang drops an SV_Coverage input declared as a plain parameter (the shader
+// would read an undefined value): that is an error naming the workaround; the
+// same input as a struct member compiles and reaches the SampleMask built-in.
+TEST(HlslProfiles, CoverageInputAsAParameterIsAnErrorAndAsAStructMemberCompiles) {
+  const CompileResult param = Compile(
+      "float4 main(float4 p : SV_Position, uint c : SV_Coverage) : SV_Target { return c; }", "main", "ps_5_0");
+  EXPECT_FALSE(param.ok);
+  EXPECT_EQ(param.FormatErrors(),
+            "test.hlsl: error: SV_Coverage input declared as a parameter of 'main': glslang's HLSL front end drops "
+            "it (the shader would read an undefined value); declare it as a member of the input struct\n");
+  const CompileResult member = Compile(
+      "struct In { float4 p : SV_Position; uint c : SV_Coverage; };\n"
+      "struct Out { float4 color : SV_Target; uint c : SV_Coverage; };\n"
+      "Out main(In i) { Out o; o.color = i.c; o.c = i.c; return o; }",
+      "main", "ps_5_0");
+  ASSERT_COMPILED(member);
+}
+
 TEST(HlslProfiles, GeometryShaderKeepsMaxVertexCount) {
   const CompileResult r = Compile(kGeometryShader, "main", "gs_5_0");
   ASSERT_COMPILED(r);

@@ -30,6 +30,23 @@ RENDER_TARGET_BLEND_DESC AlphaBlend() {
 
 TEST(BlendValidate, DefaultDescIsValid) { EXPECT_EQ(Validate(BLEND_DESC{}), ""); }
 
+// A device without blending for a format (Vulkan's optional float32 blending)
+// refuses draws that blend it, and only those.
+TEST(BlendCapability, BlendingAFormatTheDeviceCannotBlendIsRefusedWithTheReason) {
+  RENDER_TARGET_BLEND_DESC rt;
+  rt.BlendEnable = TRUE;
+  rt.BlendOp = BLEND_OP_MAX;
+  BLEND_DESC desc;
+  desc.RenderTarget[0] = rt;
+  const VkPipelineColorBlendAttachmentState blending = ToVulkan(desc).attachments[0];
+  EXPECT_EQ(CheckBlendable(2, "DXGI_FORMAT_R32_FLOAT", blending, false, "GPU X"),
+            "render target 2 (DXGI_FORMAT_R32_FLOAT) has blending enabled, but GPU X cannot blend that format (no "
+            "VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT)");
+  EXPECT_EQ(CheckBlendable(2, "DXGI_FORMAT_R32_FLOAT", blending, true, "GPU X"), "");
+  const VkPipelineColorBlendAttachmentState opaque = ToVulkan(BLEND_DESC{}).attachments[0];
+  EXPECT_EQ(CheckBlendable(0, "DXGI_FORMAT_R32_FLOAT", opaque, false, "GPU X"), "") << "no blending, nothing to refuse";
+}
+
 TEST(BlendValidate, InvalidSrcBlendNamesTargetFieldAndValue) {
   BLEND_DESC d = Independent();
   d.RenderTarget[2] = AlphaBlend();

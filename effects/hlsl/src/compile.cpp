@@ -190,6 +190,33 @@ void AddError(CompileResult& result, const std::string& file, std::string messag
   result.errors.push_back({file, 0, 0, std::move(message)});
 }
 
+// glslang 12's HLSL front end drops a pixel shader's SV_Coverage input
+// declared as a plain entry-point parameter: it declares the SampleMaskIn
+// variable but never copies it into the parameter, so the shader reads an
+// undefined value (as a member of an input struct it is copied). Such an
+// input is one the linker objects list and nothing in the shader reads.
+class UnreadCoverageInput final : public glslang::TIntermTraverser {
+ public:
+  bool visitAggregate(glslang::TVisit, glslang::TIntermAggregate* node) override {
+    if (node->getOp() != glslang::EOpLinkerObjects) return true;
+    for (TIntermNode* object : node->getSequence()) {
+      const glslang::TIntermSymbol* symbol = object->getAsSymbolNode();
+      if (symbol && symbol->getQualifier().builtIn == glslang::EbvSampleMask &&
+          symbol->getQualifier().storage == glslang::EvqVaryingIn)
+        coverageInputs_.push_back(symbol->getId());
+    }
+    return false;
+  }
+  void visitSymbol(glslang::TIntermSymbol* symbol) override { read_.push_back(symbol->getId()); }
+  bool Found() const {
+    return std::any_of(coverageInputs_.begin(), coverageInputs_.end(),
+                       [&](long long id) { return std::find(read_.begin(), read_.end(), id) == read_.end(); });
+  }
+
+ private:
+  std::vector<long long> coverageInputs_, read_;
+};
+
 spvtools::MessageConsumer CollectInto(std::string& sink) {
   return [&sink](spv_message_level_t level, const char*, const spv_position_t& pos, const char* message) {
     if (level > SPV_MSG_ERROR) return;
@@ -356,6 +383,15 @@ bool Frontend(const CompileRequest& request, const std::string& fileName, EShLan
   if (!linked) return false;
   if (program.getIntermediate(lang)->getNumEntryPoints() != 1) {
     AddError(result, fileName, "entry point '" + request.entryPoint + "' not found");
+    return false;
+  }
+  UnreadCoverageInput coverage;
+  program.getIntermediate(lang)->getTreeRoot()->traverse(&coverage);
+  if (coverage.Found()) {
+    AddError(result, fileName,
+             "SV_Coverage input declared as a parameter of '" + request.entryPoint +
+                 "': glslang's HLSL front end drops it (the shader would read an undefined value); declare it as a "
+                 "member of the input struct");
     return false;
   }
   if (!program.mapIO()) {

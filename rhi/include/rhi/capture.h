@@ -10,12 +10,14 @@
 
 namespace rhi {
 
-// Reads `subresource` of the single-sample 2D texture `source` into `texels`,
-// rows tightly packed (the mip level's width times the format's bytes per
-// texel, no row pitch). Waits for the GPU. Returns S_OK; E_INVALIDARG, with the
-// reason sent to the device's message callback, for a multisampled texture
-// (resolve it first, as in D3D11) or a subresource out of range; or the HRESULT
-// of the call that failed.
+// Reads `subresource` of the 2D texture `source` into `texels`, rows tightly
+// packed (the mip level's width times the format's bytes per texel, no row
+// pitch). A multisampled texture is resolved first (ResolveSubresource: the
+// average of each pixel's samples), its subresource being the array slice.
+// Waits for the GPU. Returns S_OK; E_INVALIDARG, with the reason sent to the
+// device's message callback, for a subresource out of range or a multisampled
+// texture that has no resolve (integer, depth and typeless formats); or the
+// HRESULT of the call that failed.
 HRESULT CaptureTexture2D(Device* device, DeviceContext* context, Texture2D* source, UINT subresource,
                          std::vector<uint8_t>* texels);
 

@@ -56,6 +56,12 @@ inline constexpr UINT8 DEFAULT_STENCIL_READ_MASK = 0xff;
 inline constexpr UINT8 DEFAULT_STENCIL_WRITE_MASK = 0xff;
 inline constexpr FLOAT FLOAT32_MAX = 3.402823466e+38f;
 inline constexpr UINT REQ_MAXANISOTROPY = 16;
+inline constexpr UINT MAX_MULTISAMPLE_SAMPLE_COUNT = 32;
+
+// DXGI_SAMPLE_DESC::Quality values that name a sample pattern (D3D11_STANDARD_MULTISAMPLE_QUALITY_LEVELS).
+// The standard pattern is Vulkan's standard sample locations; the centre pattern has no Vulkan counterpart.
+inline constexpr UINT STANDARD_MULTISAMPLE_PATTERN = 0xffffffffu;
+inline constexpr UINT CENTER_MULTISAMPLE_PATTERN = 0xfffffffeu;
 
 enum DXGI_FORMAT : UINT {
   DXGI_FORMAT_UNKNOWN = 0,
@@ -101,6 +107,7 @@ enum DXGI_FORMAT : UINT {
   DXGI_FORMAT_R24G8_TYPELESS = 44,
   DXGI_FORMAT_D24_UNORM_S8_UINT = 45,
   DXGI_FORMAT_R24_UNORM_X8_TYPELESS = 46,
+  DXGI_FORMAT_X24_TYPELESS_G8_UINT = 47,
   DXGI_FORMAT_R8G8_TYPELESS = 48,
   DXGI_FORMAT_R8G8_UNORM = 49,
   DXGI_FORMAT_R8G8_UINT = 50,

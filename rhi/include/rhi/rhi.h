@@ -350,6 +350,12 @@ class Device : public Unknown {
 
   virtual HRESULT CreateQuery(const QUERY_DESC* pQueryDesc, Query** ppQuery) = 0;
 
+  // *pNumQualityLevels: 1 when a render target (or depth-stencil, for depth
+  // formats) of Format may have SampleCount samples, else 0 (D3D11's answer for
+  // an unsupported combination). Quality must then be 0 or
+  // STANDARD_MULTISAMPLE_PATTERN. E_INVALIDARG for an unknown or typeless format.
+  virtual HRESULT CheckMultisampleQualityLevels(DXGI_FORMAT Format, UINT SampleCount, UINT* pNumQualityLevels) = 0;
+
   virtual void GetImmediateContext(DeviceContext** ppImmediateContext) = 0;
 
   // Not in D3D11: the Vulkan physical device's name ("llvmpipe (LLVM 15.0.6, 256 bits)").

@@ -244,6 +244,13 @@ VkColorComponentFlags ToVkColorWriteMask(UINT8 mask) {
   return mask & COLOR_WRITE_ENABLE_ALL;
 }
 
+std::string CheckBlendable(UINT slot, const char* formatName, const VkPipelineColorBlendAttachmentState& attachment,
+                           bool formatBlends, const std::string& adapter) {
+  if (!attachment.blendEnable || formatBlends) return {};
+  return "render target " + std::to_string(slot) + " (" + formatName + ") has blending enabled, but " + adapter +
+         " cannot blend that format (no VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT)";
+}
+
 void AdjustForMissingAlpha(VkPipelineColorBlendAttachmentState& a) {
   auto fix = [](VkBlendFactor f, bool color) {
     switch (f) {

@@ -52,6 +52,15 @@ VkColorComponentFlags ToVkColorWriteMask(UINT8 mask);
 // ZERO for colour, and alpha writes are masked so the hidden channel is untouched.
 void AdjustForMissingAlpha(VkPipelineColorBlendAttachmentState& attachment);
 
+// Empty when render target `slot` (of the D3D format named `formatName`) may
+// be drawn with `attachment`; else why the draw is refused: blending is on and
+// the device cannot blend the format (`formatBlends`: its Vulkan format has
+// VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT). Vulkan makes that optional
+// (float32 formats lack it on some devices); D3D11's feature level 11 blends
+// every float and UNORM target, so there is no D3D11 fallback to take.
+std::string CheckBlendable(UINT slot, const char* formatName, const VkPipelineColorBlendAttachmentState& attachment,
+                           bool formatBlends, const std::string& adapter);
+
 // "D3D11_BLEND_SRC_COLOR", or nullptr for a value that is not a D3D11_BLEND.
 const char* BlendName(BLEND factor);
 

@@ -90,6 +90,9 @@ constexpr FormatInfo kFormats[] = {
     Make(F(R24G8_TYPELESS), VK(D24_UNORM_S8_UINT), 4, 2, K::Typeless, SR | DS, FAM(R24G8_TYPELESS), kDepth | kStencil),
     Make(F(D24_UNORM_S8_UINT), VK(D24_UNORM_S8_UINT), 4, 2, K::Depth, DS, FAM(R24G8_TYPELESS), kDepth | kStencil),
     Make(F(R24_UNORM_X8_TYPELESS), VK(D24_UNORM_S8_UINT), 4, 1, K::Unorm, SR, FAM(R24G8_TYPELESS), kDepth),
+    // The stencil read of an R24G8 texture: a view of the image's stencil aspect.
+    Make(F(X24_TYPELESS_G8_UINT), VK(D24_UNORM_S8_UINT), 4, 1, K::Uint, SR, FAM(R24G8_TYPELESS), kStencil,
+         ViewSwizzle::StencilInGreen),
     Make(F(R8G8_TYPELESS), VK(R8G8_UINT), 2, 2, K::Typeless, kColor, FAM(R8G8_TYPELESS)),
     Make(F(R8G8_UNORM), VK(R8G8_UNORM), 2, 2, K::Unorm, kVertexColor, FAM(R8G8_TYPELESS)),
     Make(F(R8G8_UINT), VK(R8G8_UINT), 2, 2, K::Uint, kVertexColor, FAM(R8G8_TYPELESS)),
@@ -161,6 +164,8 @@ VkComponentMapping ToVkComponentMapping(ViewSwizzle swizzle) {
   switch (swizzle) {
     case ViewSwizzle::Identity: return {I, I, I, I};
     case ViewSwizzle::AlphaOne: return {I, I, I, VK_COMPONENT_SWIZZLE_ONE};
+    case ViewSwizzle::StencilInGreen:
+      return {VK_COMPONENT_SWIZZLE_ZERO, VK_COMPONENT_SWIZZLE_R, VK_COMPONENT_SWIZZLE_ZERO, VK_COMPONENT_SWIZZLE_ONE};
     case ViewSwizzle::AlphaFromRed:
       return {VK_COMPONENT_SWIZZLE_ZERO, VK_COMPONENT_SWIZZLE_ZERO, VK_COMPONENT_SWIZZLE_ZERO, VK_COMPONENT_SWIZZLE_R};
   }

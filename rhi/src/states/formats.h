@@ -18,6 +18,7 @@ enum class ViewSwizzle : uint8_t {
   Identity,
   AlphaOne,      // B8G8R8X8*: stored as B8G8R8A8, the X byte is hidden, reads give A = 1
   AlphaFromRed,  // A8_UNORM: stored as R8_UNORM (no VK_FORMAT_A8_UNORM_KHR here), reads give (0, 0, 0, R)
+  StencilInGreen,  // X24_TYPELESS_G8_UINT: Vulkan reads stencil in R, D3D11 in G; reads give (0, S, 0, 1)
 };
 
 struct FormatInfo {
@@ -40,7 +41,7 @@ struct FormatInfo {
   bool alphaIsOne;
   bool isSrgb;
   bool isDepth;             // has (or views) a depth aspect
-  bool hasStencil;
+  bool hasStencil;          // has (or views) a stencil aspect; a view format with it and no depth reads stencil
   // BIND_* flags D3D11 feature level 11_0 requires for this format: VERTEX_BUFFER
   // (usable in an input layout), INDEX_BUFFER, SHADER_RESOURCE, RENDER_TARGET,
   // DEPTH_STENCIL, UNORDERED_ACCESS. A8_UNORM as a render target needs the pixel

@@ -287,6 +287,28 @@ TEST_P(SamplePositionTest, GetSamplePositionIsTheStandardPattern) {
   }
 }
 
+// GetRenderTargetSamplePosition (which the HLSL compiler supplies; glslang
+// lacks it) gives the bound render targets' standard positions. Every sample
+// of pixel x holds position x, so the resolve keeps it.
+TEST_P(SamplePositionTest, GetRenderTargetSamplePositionIsTheStandardPatternOfTheTargets) {
+  if (!Supported()) GTEST_SKIP() << "no " << samples() << "x target on " << device->GetAdapterName();
+  ComPtr<Texture2D> out = MakeTexture(samples() + 1, 1, DXGI_FORMAT_R32G32B32A32_FLOAT, BIND_RENDER_TARGET, samples());
+  ComPtr<RenderTargetView> rtv;
+  ASSERT_EQ(device->CreateRenderTargetView(out.Get(), nullptr, rtv.GetAddressOf()), S_OK);
+  ComPtr<PixelShader> ps = PS(R"(float4 main(float4 pos : SV_Position) : SV_Target {
+      return float4(GetRenderTargetSamplePosition(int(pos.x)), 0, 1); })");
+  BindTarget(rtv.Get(), samples() + 1, 1);
+  DrawFullScreen(ps.Get());
+  const std::vector<float> positions = ReadFloats(out.Get());
+  const std::vector<SampleOffset> pattern = StandardPattern(samples());
+  for (UINT s = 0; s < samples(); ++s) {
+    EXPECT_EQ(positions[s * 4 + 0], pattern[s].x / 16.0f) << "sample " << s << " x";
+    EXPECT_EQ(positions[s * 4 + 1], pattern[s].y / 16.0f) << "sample " << s << " y";
+  }
+  EXPECT_EQ(positions[samples() * 4 + 0], 0.0f) << "an index past the count gives (0, 0)";
+  EXPECT_EQ(positions[samples() * 4 + 1], 0.0f) << "an index past the count gives (0, 0)";
+}
+
 INSTANTIATE_TEST_SUITE_P(R32Float, SamplePositionTest,
                          ::testing::Combine(::testing::Values(FormatCase{DXGI_FORMAT_R32_FLOAT, "R32_FLOAT", 1}),
                                             ::testing::ValuesIn(kCounts)),

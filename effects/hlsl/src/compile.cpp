@@ -405,12 +405,12 @@ CompileResult CompileInProcess(const CompileRequest& request) {
   SourceFiles files{{fileName, request.source}};
   bool ok = Frontend(request, fileName, lang, result.stage, false, *shader, *program, files, result);
   if (!ok && CallsMissingSamplePosition(result)) {
+    // A glslang shader parses once: the second try, with the definition, needs new objects.
     program.reset();
     shader = std::make_unique<glslang::TShader>(lang);
     program = std::make_unique<glslang::TProgram>();
-    const Stage stage = result.stage;
-    result = CompileResult{};
-    result.stage = stage;
+    result.errors.clear();
+    result.warnings.clear();
     files = {{fileName, request.source}};
     ok = Frontend(request, fileName, lang, result.stage, true, *shader, *program, files, result);
   }
@@ -418,14 +418,13 @@ CompileResult CompileInProcess(const CompileRequest& request) {
     if (result.errors.empty()) AddError(result, fileName, "compilation failed");
     return result;
   }
-  glslang::TProgram& linked = *program;
-  if (!linked.buildReflection(EShReflectionAllBlockVariables | EShReflectionSeparateBuffers)) {
+  if (!program->buildReflection(EShReflectionAllBlockVariables | EShReflectionSeparateBuffers)) {
     AddError(result, fileName, "glslang reflection failed");
     return result;
   }
-  std::vector<uint32_t> spirv = GenerateSpirv(linked, lang, fileName, result);
+  std::vector<uint32_t> spirv = GenerateSpirv(*program, lang, fileName, result);
   // Reflect from the unoptimized module: it still has every declared block.
-  Reflect(linked, result.stage, files, spirv, result);
+  Reflect(*program, result.stage, files, spirv, result);
   Finish(std::move(spirv), fileName, result);
   result.ok = result.errors.empty();
   return result;

@@ -437,6 +437,40 @@ TEST_F(RhiGpuTest, MultisampledArraySlicesAreWrittenReadAndResolvedSeparately) {
   EXPECT_EQ(first, 30.0f);
 }
 
+// A typeless texture resolves as the Format ResolveSubresource names: two of
+// four samples white (SampleMask 0x3) average to 0.5, stored as 127 or 128 in
+// UNORM and, averaged in linear space, as 188 (sRGB of 0.5) in UNORM_SRGB.
+TEST_F(RhiGpuTest, TypelessTexturesResolveAsTheFormatGiven) {
+  const UINT bind = BIND_RENDER_TARGET | BIND_SHADER_RESOURCE;
+  ComPtr<Texture2D> ms = MakeTexture(4, 4, DXGI_FORMAT_R8G8B8A8_TYPELESS, bind, 4);
+  RENDER_TARGET_VIEW_DESC rtvDesc{DXGI_FORMAT_R8G8B8A8_UNORM, RTV_DIMENSION_TEXTURE2DMS, {}};
+  ComPtr<RenderTargetView> rtv;
+  ASSERT_EQ(device->CreateRenderTargetView(ms.Get(), &rtvDesc, rtv.GetAddressOf()), S_OK);
+  Clear(rtv.Get(), {0, 0, 0, 0});
+  UseColorPipeline();
+  BindTarget(rtv.Get(), 4, 4);
+  context->OMSetBlendState(nullptr, nullptr, 0x3);
+  DrawVertices(Quad(0, 0, 4, 4, kWhite, 4, 4));
+  context->OMSetBlendState(nullptr, nullptr, DEFAULT_SAMPLE_MASK);
+  context->OMSetRenderTargets(0, nullptr, nullptr);
+
+  ComPtr<Texture2D> unorm = MakeTexture(4, 4, DXGI_FORMAT_R8G8B8A8_TYPELESS, bind);
+  context->ResolveSubresource(unorm.Get(), 0, ms.Get(), 0, DXGI_FORMAT_R8G8B8A8_UNORM);
+  ComPtr<Texture2D> srgb = MakeTexture(4, 4, DXGI_FORMAT_R8G8B8A8_TYPELESS, bind);
+  context->ResolveSubresource(srgb.Get(), 0, ms.Get(), 0, DXGI_FORMAT_R8G8B8A8_UNORM_SRGB);
+  ASSERT_TRUE(Refusals().empty()) << Refusals().front();
+  const std::vector<uint8_t> unormTexels = ReadTexture(unorm.Get()), srgbTexels = ReadTexture(srgb.Get());
+  ASSERT_EQ(unormTexels.size(), 64u);
+  for (UINT i = 0; i < 64; ++i) {
+    EXPECT_NEAR(unormTexels[i], 127.5, 0.5) << "UNORM byte " << i;
+    EXPECT_NEAR(srgbTexels[i], i % 4 == 3 ? 127.5 : 188.0, i % 4 == 3 ? 0.5 : 1.0) << "UNORM_SRGB byte " << i;
+  }
+
+  ComPtr<Texture2D> notTarget = MakeTexture(4, 4, DXGI_FORMAT_R8G8B8A8_TYPELESS, BIND_SHADER_RESOURCE);
+  context->ResolveSubresource(notTarget.Get(), 0, ms.Get(), 0, DXGI_FORMAT_R8G8B8A8_UNORM);
+  EXPECT_TRUE(RefusedWith("resolving a typeless resource as DXGI_FORMAT_R8G8B8A8_UNORM needs BIND_RENDER_TARGET"));
+}
+
 // What has no average is refused with the reason: integer and depth formats,
 // in ResolveSubresource and in CaptureTexture2D.
 TEST_F(RhiGpuTest, IntegerAndDepthMultisampledTexturesHaveNoResolve) {

@@ -197,6 +197,9 @@ class ContextImpl final : public DeviceContext {
   void SetShaderResources(ShaderStage stage, UINT start, UINT count, ShaderResourceView* const* views);
   void SetSamplers(ShaderStage stage, UINT start, UINT count, SamplerState* const* samplers);
   void EmitBarriers();
+  // ResolveSubresource as `format` where an image stores another member of its
+  // typeless family: a rendering instance with a resolve attachment.
+  void ResolveThroughRendering(TextureStorage& dst, UINT dstSub, TextureStorage& src, UINT srcSub, VkFormat format);
   using UavSlots = std::array<Bound<UnorderedAccessViewImpl>, PS_CS_UAV_REGISTER_COUNT>;
   // D3D11's hazard rule: a resource bound for writing leaves every read binding
   // and every UAV slot (of either pipeline), with a warning for each read binding

@@ -436,10 +436,30 @@ std::string ResolveRefusal(const TextureStorage* dst, UINT dstSub, const Texture
     return std::string(info->name) + " cannot be resolved (integer and depth formats have no average)";
   if (!states::IsViewCompatible(src->shape().format, format) || !states::IsViewCompatible(dst->shape().format, format))
     return std::string(info->name) + " is not compatible with both resources' formats";
-  // vkCmdResolveImage reads and writes the images' own formats.
-  if (src->vkFormat() != info->vkFormat || dst->vkFormat() != info->vkFormat)
-    return std::string("resolving a typeless resource as ") + info->name + " is not supported by this backend";
+  // vkCmdResolveImage reads and writes the images' own formats; resolving as
+  // another member of a typeless family goes through views of `format` as
+  // rendering attachments, which both images must allow.
+  const bool reinterprets = src->vkFormat() != info->vkFormat || dst->vkFormat() != info->vkFormat;
+  if (reinterprets && !((src->shape().bindFlags & dst->shape().bindFlags) & BIND_RENDER_TARGET))
+    return std::string("resolving a typeless resource as ") + info->name +
+           " needs BIND_RENDER_TARGET on both resources in this backend";
   return {};
+}
+
+// A view of one subresource of `texture` in `format`, as a colour attachment.
+VkImageView AttachmentView(Gpu& gpu, const TextureStorage& texture, UINT subresource, VkFormat format) {
+  VkImageViewUsageCreateInfo usage{VK_STRUCTURE_TYPE_IMAGE_VIEW_USAGE_CREATE_INFO};
+  usage.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+  VkImageViewCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  info.pNext = &usage;
+  info.image = texture.image();
+  info.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  info.format = format;
+  const VkImageSubresourceLayers layers = texture.Layers(subresource);
+  info.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, layers.mipLevel, 1, layers.baseArrayLayer, 1};
+  VkImageView view = VK_NULL_HANDLE;
+  vkCreateImageView(gpu.Device(), &info, nullptr, &view);
+  return view;
 }
 
 }  // namespace
@@ -453,6 +473,11 @@ void ContextImpl::ResolveSubresource(Resource* pDstResource, UINT DstSubresource
     return;
   }
   EndRendering();
+  const VkFormat format = states::GetFormatInfo(Format)->vkFormat;
+  if (src->vkFormat() != format || dst->vkFormat() != format) {
+    ResolveThroughRendering(*dst, DstSubresource, *src, SrcSubresource, format);
+    return;
+  }
   Use(*src, uses::kTransferRead);
   Use(*dst, uses::kTransferWrite);
   FlushBarriers();
@@ -460,6 +485,38 @@ void ContextImpl::ResolveSubresource(Resource* pDstResource, UINT DstSubresource
                         dst->MipExtent(DstSubresource % dst->shape().mipLevels)};
   vkCmdResolveImage(Commands(), src->image(), VK_IMAGE_LAYOUT_GENERAL, dst->image(), VK_IMAGE_LAYOUT_GENERAL, 1,
                     &region);
+}
+
+void ContextImpl::ResolveThroughRendering(TextureStorage& dst, UINT dstSub, TextureStorage& src, UINT srcSub,
+                                          VkFormat format) {
+  Gpu& gpu = device_->gpu();
+  VkImageView from = AttachmentView(gpu, src, srcSub, format);
+  VkImageView to = AttachmentView(gpu, dst, dstSub, format);
+  // The source is only loaded (STORE_OP_NONE); the resolve writes the destination at the end of the instance.
+  Use(src, {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT, false});
+  Use(dst, uses::kColorAttachment);
+  FlushBarriers();
+  VkRenderingAttachmentInfo attachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  attachment.imageView = from;
+  attachment.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
+  attachment.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+  attachment.storeOp = VK_ATTACHMENT_STORE_OP_NONE;
+  attachment.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
+  attachment.resolveImageView = to;
+  attachment.resolveImageLayout = VK_IMAGE_LAYOUT_GENERAL;
+  const VkExtent3D extent = src.MipExtent(0);
+  VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  info.renderArea = {{0, 0}, {extent.width, extent.height}};
+  info.layerCount = 1;
+  info.colorAttachmentCount = 1;
+  info.pColorAttachments = &attachment;
+  vkCmdBeginRendering(Commands(), &info);
+  vkCmdEndRendering(Commands());
+  VkDevice vkDevice = gpu.Device();
+  gpu.DeferDestroy([=] {
+    vkDestroyImageView(vkDevice, from, nullptr);
+    vkDestroyImageView(vkDevice, to, nullptr);
+  });
 }
 
 // ---------------------------------------------------------------------------

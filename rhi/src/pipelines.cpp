@@ -459,6 +459,11 @@ std::unique_ptr<GraphicsPipeline> PipelineCache::BuildGraphics(const GraphicsPip
   rendering.stencilAttachmentFormat = hasStencil ? vkDepthFormat : VK_FORMAT_UNDEFINED;
 
   pipeline->layout = Layout(CollectBindings({stages[0], stages[1], stages[2], stages[3], stages[4]}));
+  // The pixel shader's GetRenderTargetSamplePosition (effects/hlsl) reads the
+  // sample count from this constant; shaders that declare none ignore it.
+  const uint32_t sampleCount = in.samples;
+  const VkSpecializationMapEntry sampleCountEntry{kRenderTargetSampleCountSpecId, 0, sizeof sampleCount};
+  const VkSpecializationInfo pixelSpecialization{1, &sampleCountEntry, sizeof sampleCount, &sampleCount};
   std::vector<VkPipelineShaderStageCreateInfo> stageInfos;
   std::vector<VkShaderModule> modules;
   for (size_t i = 0; i < stages.size(); ++i) {
@@ -468,6 +473,7 @@ std::unique_ptr<GraphicsPipeline> PipelineCache::BuildGraphics(const GraphicsPip
     info.stage = VkStage(static_cast<ShaderStage>(i));
     info.module = modules.back();
     info.pName = stages[i]->reflection.entryPoint.c_str();
+    if (info.stage == VK_SHADER_STAGE_FRAGMENT_BIT) info.pSpecializationInfo = &pixelSpecialization;
     stageInfos.push_back(info);
   }
 

@@ -287,6 +287,28 @@ TEST_P(SamplePositionTest, GetSamplePositionIsTheStandardPattern) {
   }
 }
 
+// GetRenderTargetSamplePosition (which the HLSL compiler supplies; glslang
+// lacks it) gives the bound render targets' standard positions. Every sample
+// of pixel x holds position x, so the resolve keeps it.
+TEST_P(SamplePositionTest, GetRenderTargetSamplePositionIsTheStandardPatternOfTheTargets) {
+  if (!Supported()) GTEST_SKIP() << "no " << samples() << "x target on " << device->GetAdapterName();
+  ComPtr<Texture2D> out = MakeTexture(samples() + 1, 1, DXGI_FORMAT_R32G32B32A32_FLOAT, BIND_RENDER_TARGET, samples());
+  ComPtr<RenderTargetView> rtv;
+  ASSERT_EQ(device->CreateRenderTargetView(out.Get(), nullptr, rtv.GetAddressOf()), S_OK);
+  ComPtr<PixelShader> ps = PS(R"(float4 main(float4 pos : SV_Position) : SV_Target {
+      return float4(GetRenderTargetSamplePosition(int(pos.x)), 0, 1); })");
+  BindTarget(rtv.Get(), samples() + 1, 1);
+  DrawFullScreen(ps.Get());
+  const std::vector<float> positions = ReadFloats(out.Get());
+  const std::vector<SampleOffset> pattern = StandardPattern(samples());
+  for (UINT s = 0; s < samples(); ++s) {
+    EXPECT_EQ(positions[s * 4 + 0], pattern[s].x / 16.0f) << "sample " << s << " x";
+    EXPECT_EQ(positions[s * 4 + 1], pattern[s].y / 16.0f) << "sample " << s << " y";
+  }
+  EXPECT_EQ(positions[samples() * 4 + 0], 0.0f) << "an index past the count gives (0, 0)";
+  EXPECT_EQ(positions[samples() * 4 + 1], 0.0f) << "an index past the count gives (0, 0)";
+}
+
 INSTANTIATE_TEST_SUITE_P(R32Float, SamplePositionTest,
                          ::testing::Combine(::testing::Values(FormatCase{DXGI_FORMAT_R32_FLOAT, "R32_FLOAT", 1}),
                                             ::testing::ValuesIn(kCounts)),
@@ -413,6 +435,40 @@ TEST_F(RhiGpuTest, MultisampledArraySlicesAreWrittenReadAndResolvedSeparately) {
   std::memcpy(&first, slice2.data(), 4);
   EXPECT_EQ(slice2.size(), 4u * 4 * 4);
   EXPECT_EQ(first, 30.0f);
+}
+
+// A typeless texture resolves as the Format ResolveSubresource names: two of
+// four samples white (SampleMask 0x3) average to 0.5, stored as 127 or 128 in
+// UNORM and, averaged in linear space, as 188 (sRGB of 0.5) in UNORM_SRGB.
+TEST_F(RhiGpuTest, TypelessTexturesResolveAsTheFormatGiven) {
+  const UINT bind = BIND_RENDER_TARGET | BIND_SHADER_RESOURCE;
+  ComPtr<Texture2D> ms = MakeTexture(4, 4, DXGI_FORMAT_R8G8B8A8_TYPELESS, bind, 4);
+  RENDER_TARGET_VIEW_DESC rtvDesc{DXGI_FORMAT_R8G8B8A8_UNORM, RTV_DIMENSION_TEXTURE2DMS, {}};
+  ComPtr<RenderTargetView> rtv;
+  ASSERT_EQ(device->CreateRenderTargetView(ms.Get(), &rtvDesc, rtv.GetAddressOf()), S_OK);
+  Clear(rtv.Get(), {0, 0, 0, 0});
+  UseColorPipeline();
+  BindTarget(rtv.Get(), 4, 4);
+  context->OMSetBlendState(nullptr, nullptr, 0x3);
+  DrawVertices(Quad(0, 0, 4, 4, kWhite, 4, 4));
+  context->OMSetBlendState(nullptr, nullptr, DEFAULT_SAMPLE_MASK);
+  context->OMSetRenderTargets(0, nullptr, nullptr);
+
+  ComPtr<Texture2D> unorm = MakeTexture(4, 4, DXGI_FORMAT_R8G8B8A8_TYPELESS, bind);
+  context->ResolveSubresource(unorm.Get(), 0, ms.Get(), 0, DXGI_FORMAT_R8G8B8A8_UNORM);
+  ComPtr<Texture2D> srgb = MakeTexture(4, 4, DXGI_FORMAT_R8G8B8A8_TYPELESS, bind);
+  context->ResolveSubresource(srgb.Get(), 0, ms.Get(), 0, DXGI_FORMAT_R8G8B8A8_UNORM_SRGB);
+  ASSERT_TRUE(Refusals().empty()) << Refusals().front();
+  const std::vector<uint8_t> unormTexels = ReadTexture(unorm.Get()), srgbTexels = ReadTexture(srgb.Get());
+  ASSERT_EQ(unormTexels.size(), 64u);
+  for (UINT i = 0; i < 64; ++i) {
+    EXPECT_NEAR(unormTexels[i], 127.5, 0.5) << "UNORM byte " << i;
+    EXPECT_NEAR(srgbTexels[i], i % 4 == 3 ? 127.5 : 188.0, i % 4 == 3 ? 0.5 : 1.0) << "UNORM_SRGB byte " << i;
+  }
+
+  ComPtr<Texture2D> notTarget = MakeTexture(4, 4, DXGI_FORMAT_R8G8B8A8_TYPELESS, BIND_SHADER_RESOURCE);
+  context->ResolveSubresource(notTarget.Get(), 0, ms.Get(), 0, DXGI_FORMAT_R8G8B8A8_UNORM);
+  EXPECT_TRUE(RefusedWith("resolving a typeless resource as DXGI_FORMAT_R8G8B8A8_UNORM needs BIND_RENDER_TARGET"));
 }
 
 // What has no average is refused with the reason: integer and depth formats,

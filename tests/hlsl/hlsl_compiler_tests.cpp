@@ -322,6 +322,23 @@ TEST(HlslProfiles, CoverageInputAsAParameterIsAnErrorAndAsAStructMemberCompiles)
   ASSERT_COMPILED(member);
 }
 
+// glslang has no GetRenderTargetSamplePosition; the compiler supplies it, with
+// the sample count as the specialization constant the backend sets.
+TEST(HlslProfiles, GetRenderTargetSamplePositionReadsTheSampleCountSpecializationConstant) {
+  const CompileResult r = Compile(
+      "float4 main() : SV_Target { return float4(GetRenderTargetSamplePosition(1), 0, 1); }", "main", "ps_5_0");
+  ASSERT_COMPILED(r);
+  constexpr uint32_t kOpDecorate = 71, kDecorationSpecId = 1;
+  bool found = false;
+  for (size_t at = 5; at < r.spirv.size(); at += r.spirv[at] >> 16) {
+    const uint32_t words = r.spirv[at] >> 16;
+    if (words == 0) break;
+    found |= (r.spirv[at] & 0xffff) == kOpDecorate && words == 4 && r.spirv[at + 2] == kDecorationSpecId &&
+             r.spirv[at + 3] == rhi::kRenderTargetSampleCountSpecId;
+  }
+  EXPECT_TRUE(found) << "no SpecId " << rhi::kRenderTargetSampleCountSpecId << " decoration";
+}
+
 TEST(HlslProfiles, GeometryShaderKeepsMaxVertexCount) {
   const CompileResult r = Compile(kGeometryShader, "main", "gs_5_0");
   ASSERT_COMPILED(r);

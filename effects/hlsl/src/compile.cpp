@@ -15,6 +15,7 @@
 #include <fstream>
 #include <list>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <regex>
 #include <spirv-tools/libspirv.hpp>
@@ -165,6 +166,38 @@ std::string BuildPreamble(const std::vector<Define>& defines) {
   std::string preamble;
   for (const Define& d : defines) preamble += "#define " + d.name + " " + (d.value.empty() ? "1" : d.value) + "\n";
   return preamble;
+}
+
+// glslang 12's HLSL front end lacks GetRenderTargetSamplePosition (its
+// Texture2DMS.GetSamplePosition is a table of D3D11's standard positions). A
+// shader that calls it is compiled again with this definition: the same table,
+// chosen by the render targets' sample count, which the backend supplies as
+// the specialization constant kRenderTargetSampleCountSpecId. Positions are in
+// pixels from the pixel centre; an index past the count gives (0, 0).
+constexpr char kUnknownRenderTargetSamplePosition[] =
+    "'GetRenderTargetSamplePosition' : no matching overloaded function found";
+
+std::string RenderTargetSamplePositionPreamble() {
+  return "[[vk::constant_id(" + std::to_string(rhi::kRenderTargetSampleCountSpecId) +
+         ")]] const uint RhiRenderTargetSampleCount = 1;\n"
+         "static const int2 RhiStandardPattern[30] = {  // 2, 4, 8 and 16 samples, from index count - 2\n"
+         "  int2(4, 4), int2(-4, -4),\n"
+         "  int2(-2, -6), int2(6, -2), int2(-6, 2), int2(2, 6),\n"
+         "  int2(1, -3), int2(-1, 3), int2(5, 1), int2(-3, -5), int2(-5, 5), int2(-7, -1), int2(3, 7), int2(7, -7),\n"
+         "  int2(1, 1), int2(-1, -3), int2(-3, 2), int2(4, -1), int2(-5, -2), int2(2, 5), int2(5, 3), int2(3, -5),\n"
+         "  int2(-2, 6), int2(0, -7), int2(-4, -6), int2(-6, 4), int2(-8, 0), int2(7, -4), int2(6, 7), int2(-7, -8)};\n"
+         "float2 GetRenderTargetSamplePosition(int index) {\n"
+         "  uint count = RhiRenderTargetSampleCount;\n"
+         "  if (count < 2 || count > 16 || (count & (count - 1)) != 0 || index < 0 || uint(index) >= count)\n"
+         "    return float2(0, 0);\n"
+         "  return RhiStandardPattern[count - 2 + index] / 16.0;\n"
+         "}\n";
+}
+
+bool CallsMissingSamplePosition(const CompileResult& result) {
+  return std::any_of(result.errors.begin(), result.errors.end(), [](const Diagnostic& d) {
+    return d.message.find(kUnknownRenderTargetSamplePosition) != std::string::npos;
+  });
 }
 
 // Puts each D3D register class of this stage into its rhi binding window of set 0.
@@ -354,11 +387,13 @@ bool Validate(const std::vector<uint32_t>& spirv, std::string& error) {
 
 // Parse, link and IO-map; reflection and SPIR-V generation need all three.
 bool Frontend(const CompileRequest& request, const std::string& fileName, EShLanguage lang, Stage stage,
-              glslang::TShader& shader, glslang::TProgram& program, SourceFiles& files, CompileResult& result) {
+              bool samplePositions, glslang::TShader& shader, glslang::TProgram& program, SourceFiles& files,
+              CompileResult& result) {
   const char* text = request.source.c_str();
   const int length = static_cast<int>(request.source.size());
   const char* name = fileName.c_str();
-  const std::string preamble = BuildPreamble(request.defines);
+  const std::string preamble =
+      BuildPreamble(request.defines) + (samplePositions ? RenderTargetSamplePositionPreamble() : std::string());
   shader.setStringsWithLengthsAndNames(&text, &length, &name, 1);
   shader.setPreamble(preamble.c_str());
   // glslang's own renaming (setEntryPoint("main") + setSourceEntryPoint) would
@@ -449,20 +484,31 @@ CompileResult CompileInProcess(const CompileRequest& request) {
   EnsureGlslangInitialized();
   const EShLanguage lang = ToGlslang(result.stage);
   // The program must be destroyed before the shader it links.
-  glslang::TShader shader(lang);
-  glslang::TProgram program;
+  auto shader = std::make_unique<glslang::TShader>(lang);
+  auto program = std::make_unique<glslang::TProgram>();
   SourceFiles files{{fileName, request.source}};
-  if (!Frontend(request, fileName, lang, result.stage, shader, program, files, result)) {
+  bool ok = Frontend(request, fileName, lang, result.stage, false, *shader, *program, files, result);
+  if (!ok && CallsMissingSamplePosition(result)) {
+    // A glslang shader parses once: the second try, with the definition, needs new objects.
+    program.reset();
+    shader = std::make_unique<glslang::TShader>(lang);
+    program = std::make_unique<glslang::TProgram>();
+    result.errors.clear();
+    result.warnings.clear();
+    files = {{fileName, request.source}};
+    ok = Frontend(request, fileName, lang, result.stage, true, *shader, *program, files, result);
+  }
+  if (!ok) {
     if (result.errors.empty()) AddError(result, fileName, "compilation failed");
     return result;
   }
-  if (!program.buildReflection(EShReflectionAllBlockVariables | EShReflectionSeparateBuffers)) {
+  if (!program->buildReflection(EShReflectionAllBlockVariables | EShReflectionSeparateBuffers)) {
     AddError(result, fileName, "glslang reflection failed");
     return result;
   }
-  std::vector<uint32_t> spirv = GenerateSpirv(program, lang, fileName, result);
+  std::vector<uint32_t> spirv = GenerateSpirv(*program, lang, fileName, result);
   // Reflect from the unoptimized module: it still has every declared block.
-  Reflect(program, result.stage, files, spirv, result);
+  Reflect(*program, result.stage, files, spirv, result);
   Finish(std::move(spirv), fileName, result);
   result.ok = result.errors.empty();
   return result;

@@ -36,6 +36,12 @@ inline constexpr uint32_t RegisterClassBase(RegisterClass c) {
   return 0;
 }
 
+// The specialization constant (SpecId) through which the backend gives pixel
+// shaders the bound render targets' sample count; the HLSL compiler's
+// GetRenderTargetSamplePosition reads it (glslang has no such intrinsic).
+// glslang takes SpecIds below 2047; D3D11 shaders declare none of their own.
+inline constexpr uint32_t kRenderTargetSampleCountSpecId = 2032;
+
 inline constexpr uint32_t BindingFor(ShaderStage stage, RegisterClass c, uint32_t slot) {
   return static_cast<uint32_t>(stage) * kStageStride + RegisterClassBase(c) + slot;
 }

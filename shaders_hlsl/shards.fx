@@ -9,6 +9,7 @@
 #define OBJECT_VS VSShard
 #define OBJECT_GS NULL
 #define OBJECT_PIXEL ShardPixel
+#define OBJECT_COLORED_TRANSMISSION 1  // glass filters the light behind it by its tint
 
 // Loaded on its own, as any FX file, the object is drawn with plain alpha blending.
 #ifndef OIT_METHOD

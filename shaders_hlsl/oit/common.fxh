@@ -9,6 +9,8 @@
 //   OBJECT_PIXEL  the pixel shader's input struct, with `float4 position : SV_Position`
 //   void Shade(OBJECT_PIXEL p, out float3 c, out float a, out float3 t)
 //                 colour, opacity and transmission of a fragment.
+// and, when its surfaces filter the light they let through by colour (the glass
+// shards of document 000), OBJECT_COLORED_TRANSMISSION 1.
 // A method's technique holds every pass of the method, as an FX11 technique
 // does; a method's own passes (those that draw no object, such as composing)
 // are also built from the same include without an object (oit/method.fx):
@@ -21,6 +23,22 @@
 DepthStencilState DepthTestNoWrite { DepthEnable = TRUE; DepthWriteMask = ZERO; DepthFunc = LESS; };
 DepthStencilState NoDepth { DepthEnable = FALSE; DepthWriteMask = ZERO; };
 RasterizerState NoCull { CullMode = NONE; };
+
+#ifndef OBJECT_COLORED_TRANSMISSION
+#define OBJECT_COLORED_TRANSMISSION 0
+#endif
+
+// What a surface lets through of the light behind it, per channel: 1 - a for
+// plain translucency (OVER), 1 - a (1 - t) for coloured transmission, the
+// per-surface model colored blended OIT (Table 3) approximates. Exact methods
+// composite front to back with it: C += T * a * c; T *= TransmissionFactor(a, t).
+float3 TransmissionFactor(float a, float3 t) {
+#if OBJECT_COLORED_TRANSMISSION
+  return 1.0 - a * (1.0 - t);
+#else
+  return (1.0 - a).xxx;
+#endif
+}
 
 // The pass that draws the object with the pixel shader `ps` and the blend state `blend`.
 #define OBJECT_PASS(name, ps, blend)                         \

@@ -137,8 +137,9 @@ std::vector<BackdropVertex> BlueGround(const TranslucencySettings&) {
 }
 
 TriangleMesh TeapotInWorld() {
-  // Opacity 0.5: both walls (red over green) show, and OVER's order matters as much
-  // as it can for a single layer.
+  // Opacity 0.5 (document 002 gives none): a layer and what lies behind it weigh the
+  // same, so the red outside and the green inside behind it both show. Transmission 0:
+  // colored OIT dims what is behind by 1 - a, as OVER does.
   const MeshMaterial glass{{0.9f, 0.12f, 0.1f}, {0.15f, 0.8f, 0.2f}, 0.5f, glm::vec3(0.0f)};
   TriangleMesh teapot = UtahTeapot(8, glass);
   const auto toWorld = [](const glm::vec3& p) { return glm::vec3(p.x, p.z, -p.y); };  // a rotation: windings keep
@@ -163,7 +164,7 @@ std::vector<BackdropVertex> GreyWall(const TranslucencySettings& s) {
   const QuadStack stack = ComplexityQuadStack(s);
   const glm::vec3 forward = glm::normalize(stack.target - stack.eye);
   const glm::vec3 right = glm::normalize(glm::cross(glm::vec3(0, 1, 0), forward)), up = glm::cross(forward, right);
-  const glm::vec3 centre = stack.eye + forward * (stack.depthFar + 1.5f);
+  const glm::vec3 centre = stack.eye + forward * (stack.depthFar + 1.5f);  // 1.5 behind the farthest quad
   std::vector<BackdropVertex> v;
   AddQuad(&v, centre - 15.0f * (right + up), 30.0f * right, 30.0f * up, glm::vec3(0.5f));  // faces the eye
   return v;

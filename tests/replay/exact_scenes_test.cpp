@@ -3,7 +3,7 @@
 //  - the Utah teapot's tessellation on the CPU: the patch data's symmetries, unit
 //    normals that point out of the teapot and agree with the triangles' winding;
 //  - the teapot scene on the GPU: its outside red and its inside green (two-sided
-//    lighting, SV_IsFrontFace), the ground blue;
+//    lighting, SV_IsFrontFace), the ground blue; one DrawIndexed per object pass;
 //  - the complexity scene: the quads cover the centre of the frame, and `sorted`
 //    there equals OVER composited on the CPU from the quads' colours and opacities
 //    over the lit wall, for several depth complexities.
@@ -16,6 +16,7 @@
 #include "gpu_test.h"
 #include "renderer/meshes.h"
 #include "renderer/translucency.h"
+#include "rhi/trace.h"
 
 namespace rhi_test {
 namespace {
@@ -205,6 +206,25 @@ TEST_F(ExactScenesTest, TheTeapotIsRedOutsideGreenInsideOnABlueGround) {
   const Rgb inner = PixelAt(fromInside, s.width, {int(s.width / 2), int(s.height / 2)});
   EXPECT_GT(inner.g, inner.r + 30) << inner.r << " " << inner.g << " " << inner.b;
   EXPECT_GT(inner.g, inner.b) << inner.r << " " << inner.g << " " << inner.b;
+}
+
+// One vertex and one index buffer: every pass that draws the teapot draws all of it
+// with one DrawIndexed, in every method, sorted or not.
+TEST_F(ExactScenesTest, EveryObjectPassDrawsTheWholeTeapotWithOneDrawIndexed) {
+  const size_t indices = renderer::UtahTeapot(kSegments, {}).indices.size();
+  const std::vector<std::string> want = {"DrawIndexed(" + std::to_string(indices) + ", 0, 0)"};
+  for (const renderer::oit::MethodInfo* method : renderer::oit::Methods()) {
+    rhi::Trace trace;
+    ComPtr<rhi::DeviceContext> traced;
+    ASSERT_EQ(rhi::CreateTracingContext(context.Get(), &trace, traced.GetAddressOf()), rhi::S_OK);
+    std::string error;
+    auto t = Translucency::Create(device.Get(), traced.Get(), Settings("teapot"), &error);
+    ASSERT_NE(t, nullptr) << error;
+    ASSERT_TRUE(t->RenderFrame(*method)) << t->error();
+    EXPECT_EQ(trace.Filter({"DrawIndexed", "DrawIndexedInstanced", "DrawInstanced"}), want) << method->name;
+    t.reset();
+    traced.Reset();
+  }
 }
 
 // OVER of the quads' lit colours, far to near, over the lit wall, in 8-bit steps as

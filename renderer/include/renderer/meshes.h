@@ -41,8 +41,9 @@ TriangleMesh UtahTeapot(int segments, const MeshMaterial& material);
 // `count` square quads facing the eye, perpendicular to the view axis eye -> target,
 // at distinct view depths spread over [depthNear, depthFar] (distances from the eye
 // along the axis), in random order, their colours cycling through six hues and
-// their opacities in 0.2..0.5, from (seed). Every quad covers the cone of half-angle kCentreHalfAngleDegrees around
-// the view axis, so that the depth complexity there is exactly `count`.
+// their opacities in 0.2..0.5, from (seed). Every quad covers the cone of
+// half-angle kCentreHalfAngleDegrees around the view axis, so that the depth
+// complexity there is exactly `count`.
 struct QuadStack {
   glm::vec3 eye, target;
   float depthNear = 0, depthFar = 0;

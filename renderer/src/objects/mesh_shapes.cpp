@@ -85,6 +85,30 @@ void AddGridTriangles(uint32_t base, int segments, TriangleMesh* mesh) {
     }
 }
 
+// 0..count-1 in a seeded random order (Fisher-Yates): distinct depth slots handed
+// out so that submission order is not depth order.
+std::vector<uint32_t> ShuffledSlots(uint32_t count, uint32_t seed) {
+  std::vector<uint32_t> slot(count);
+  std::iota(slot.begin(), slot.end(), 0u);
+  for (uint32_t i = count; i > 1; --i) std::swap(slot[i - 1], slot[uint32_t(Random(seed, 300, i) * i)]);
+  return slot;
+}
+
+// A square of half-size `half` in the plane of right and up, facing an eye that
+// looks along right x up: its normal, up x right, points at the eye.
+TriangleMesh FacingSquare(const glm::vec3& centre, const glm::vec3& right, const glm::vec3& up, float half,
+                          const MeshMaterial& material) {
+  TriangleMesh quad;
+  const glm::vec3 towardsEye = glm::cross(up, right);
+  for (glm::vec2 corner : {glm::vec2(-1, -1), glm::vec2(-1, 1), glm::vec2(1, 1), glm::vec2(1, -1)}) {
+    quad.positions.push_back(centre + half * (corner.x * right + corner.y * up));
+    quad.normals.push_back(towardsEye);
+  }
+  quad.indices = {0, 1, 2, 0, 2, 3};  // clockwise as the eye sees them: front faces
+  quad.material = material;
+  return quad;
+}
+
 }  // namespace
 
 TriangleMesh UtahTeapot(int segments, const MeshMaterial& material) {
@@ -110,12 +134,7 @@ std::vector<TriangleMesh> CameraFacingQuads(const QuadStack& stack) {
   const glm::vec3 up = glm::cross(forward, right);
   const glm::vec3 palette[6] = {{0.95f, 0.2f, 0.15f}, {0.2f, 0.85f, 0.3f}, {0.2f, 0.4f, 1.0f},
                                 {1.0f, 0.8f, 0.15f},  {0.2f, 0.9f, 0.95f}, {0.9f, 0.25f, 0.9f}};
-  // Distinct depths, evenly spaced, handed out in a seeded random order so that
-  // submission order is not depth order.
-  std::vector<uint32_t> slot(stack.count);
-  std::iota(slot.begin(), slot.end(), 0u);
-  for (uint32_t i = stack.count; i > 1; --i)
-    std::swap(slot[i - 1], slot[uint32_t(Random(stack.seed, 300, i) * i)]);
+  const std::vector<uint32_t> slot = ShuffledSlots(stack.count, stack.seed);
   const float spacing = stack.count > 1 ? (stack.depthFar - stack.depthNear) / float(stack.count - 1) : 0.0f;
   const uint32_t firstColour = uint32_t(Random(stack.seed, 320, 0) * 6);  // then every colour in turn
   std::vector<TriangleMesh> quads;
@@ -126,19 +145,12 @@ std::vector<TriangleMesh> CameraFacingQuads(const QuadStack& stack) {
     // the axis by up to the half-size less 5 degrees, so that every quad covers the
     // central 4 degrees and the quads overlap differently around them.
     const float halfAngle = 8.0f + 14.0f * r(0);
-    const float half = depth * std::tan(glm::radians(halfAngle));
     const glm::vec2 offset = depth * std::tan(glm::radians(halfAngle - 5.0f)) *
                              glm::vec2(2 * r(1) - 1, 2 * r(2) - 1) / std::sqrt(2.0f);
-    const glm::vec3 centre = stack.eye + forward * depth + right * offset.x + up * offset.y;
-    TriangleMesh quad;
-    for (glm::vec2 corner : {glm::vec2(-1, -1), glm::vec2(-1, 1), glm::vec2(1, 1), glm::vec2(1, -1)}) {
-      quad.positions.push_back(centre + half * (corner.x * right + corner.y * up));
-      quad.normals.push_back(-forward);
-    }
-    quad.indices = {0, 1, 2, 0, 2, 3};  // clockwise as the eye sees them: front faces
     const glm::vec3 colour = palette[(i + firstColour) % 6];
-    quad.material = {colour, colour, 0.2f + 0.3f * r(4), colour};  // coloured filters: they transmit their colour
-    quads.push_back(std::move(quad));
+    const MeshMaterial filter{colour, colour, 0.2f + 0.3f * r(4), colour};  // a colour filter: transmits its colour
+    quads.push_back(FacingSquare(stack.eye + forward * depth + right * offset.x + up * offset.y, right, up,
+                                 depth * std::tan(glm::radians(halfAngle)), filter));
   }
   return quads;
 }

@@ -442,7 +442,8 @@ void ReplayWindow::BuildOverlay() {
   if (ImGui::CollapsingHeader("Parameters (applying restarts the demo)")) {
     // Creation settings of Translucency: a changed value recreates it once the edit ends.
     auto apply = [&] { recreate_ |= ImGui::IsItemDeactivatedAfterEdit(); };
-    if (settings_.scene != "shards") {
+    const std::string& scene = settings_.scene;
+    if (scene == "smoke" || scene == "fire") {
       ImGui::SliderFloat("particle size", &settings_.particleSize, 0.05f, 1.0f, "%.2f");
       apply();
       int spawn = int(settings_.rule.spawnPerFrame);
@@ -454,13 +455,17 @@ void ReplayWindow::BuildOverlay() {
       int extra = int(settings_.extraShards);
       if (ImGui::SliderInt("extra shards", &extra, 0, 20000)) settings_.extraShards = uint32_t(extra);
       apply();
-    } else {
+    } else if (scene == "shards") {
       int shards = int(settings_.shardCount);
       if (ImGui::SliderInt("shard count", &shards, 1, 20000)) settings_.shardCount = uint32_t(shards);
       apply();
       ImGui::SliderFloat("surface tint", &settings_.shardSurfaceTint, 0.0f, 1.0f, "%.2f");
       apply();
       recreate_ |= ImGui::Checkbox("all shards red", &settings_.shardsAllRed);
+    } else if (scene == "complexity") {
+      int complexity = int(settings_.depthComplexity);
+      if (ImGui::SliderInt("depth complexity", &complexity, 1, 64)) settings_.depthComplexity = uint32_t(complexity);
+      apply();
     }
     recreate_ |= ImGui::Checkbox("neutral background", &settings_.neutralBackground);
   }

@@ -1,11 +1,18 @@
-// The scenes of document 000's demos, one registry entry each.
+// The scenes of the replays, one registry entry each: document 000's demos, and
+// the teapot and the depth-complexity stack of the exact methods (documents 002, 004).
 #include "renderer/scenes.h"
+
+#include <cmath>
 
 #include "objects/objects.h"
 #include "renderer/translucency.h"
 
 namespace renderer {
 namespace {
+
+// The complexity scene's camera; ComplexityQuadStack (below) faces its quads to it.
+constexpr glm::vec3 kComplexityTarget{0.0f, 1.5f, 0.0f};
+constexpr float kComplexityRadius = 6.0f;
 
 void AddQuad(std::vector<BackdropVertex>* v, glm::vec3 o, glm::vec3 u, glm::vec3 w, glm::vec3 color) {
   glm::vec3 n = glm::normalize(glm::cross(w, u));  // left-handed: u right, w up -> normal towards the viewer
@@ -120,10 +127,78 @@ const SceneInfo kFire{"fire", "the same particle system as flames; OVER is addit
 const SceneInfo kShards{"shards", "document 000's instanced coloured glass shards (one DrawIndexedInstanced)",
                         {0.0f, 1.9f, 0.0f}, 7.5f, 1, StripedRoom, BuildShards};
 
+// Document 002's Fig. 3: the Utah teapot, outside red and inside green, over a blue
+// ground. Its frame (z up) is turned to the world's (y up) and halved: 1.6 high,
+// spout towards +x, its bottom 0.02 over the ground (not in it: the two would z-fight).
+std::vector<BackdropVertex> BlueGround(const TranslucencySettings&) {
+  std::vector<BackdropVertex> v;
+  AddQuad(&v, {-20, 0, -20}, {40, 0, 0}, {0, 0, 40}, {0.15f, 0.3f, 0.85f});
+  return v;
+}
+
+TriangleMesh TeapotInWorld() {
+  // Opacity 0.5 (document 002 gives none): a layer and what lies behind it weigh the
+  // same, so the red outside and the green inside behind it both show. Transmission 0:
+  // colored OIT dims what is behind by 1 - a, as OVER does.
+  const MeshMaterial glass{{0.9f, 0.12f, 0.1f}, {0.15f, 0.8f, 0.2f}, 0.5f, glm::vec3(0.0f)};
+  TriangleMesh teapot = UtahTeapot(8, glass);
+  const auto toWorld = [](const glm::vec3& p) { return glm::vec3(p.x, p.z, -p.y); };  // a rotation: windings keep
+  for (glm::vec3& p : teapot.positions) p = 0.5f * toWorld(p) + glm::vec3(0, 0.02f, 0);
+  for (glm::vec3& n : teapot.normals) n = toWorld(n);
+  return teapot;
+}
+
+bool BuildTeapot(rhi::Device* device, const TranslucencySettings& s,
+                 std::vector<std::unique_ptr<TranslucentObject>>* objects, std::string* error) {
+  auto teapot = CreateMeshes(Setup(device, s), {TeapotInWorld()}, error);
+  if (!teapot) return false;
+  objects->push_back(std::move(teapot));
+  return true;
+}
+
+// Document 004's depth complexity: a stack of camera-facing quads, all of them over
+// the centre of the frame, before a grey wall facing the camera of frame 0.
+constexpr uint32_t kMaxDepthComplexity = 64;
+
+std::vector<BackdropVertex> GreyWall(const TranslucencySettings& s) {
+  const QuadStack stack = ComplexityQuadStack(s);
+  const glm::vec3 forward = glm::normalize(stack.target - stack.eye);
+  const glm::vec3 right = glm::normalize(glm::cross(glm::vec3(0, 1, 0), forward)), up = glm::cross(forward, right);
+  const glm::vec3 centre = stack.eye + forward * (stack.depthFar + 1.5f);  // 1.5 behind the farthest quad
+  std::vector<BackdropVertex> v;
+  AddQuad(&v, centre - 15.0f * (right + up), 30.0f * right, 30.0f * up, glm::vec3(0.5f));  // faces the eye
+  return v;
+}
+
+bool BuildComplexity(rhi::Device* device, const TranslucencySettings& s,
+                     std::vector<std::unique_ptr<TranslucentObject>>* objects, std::string* error) {
+  if (s.depthComplexity < 1 || s.depthComplexity > kMaxDepthComplexity) {
+    *error = "depthComplexity " + std::to_string(s.depthComplexity) + " is outside 1.." +
+             std::to_string(kMaxDepthComplexity);
+    return false;
+  }
+  auto quads = CreateMeshes(Setup(device, s), CameraFacingQuads(ComplexityQuadStack(s)), error);
+  if (!quads) return false;
+  objects->push_back(std::move(quads));
+  return true;
+}
+
+const SceneInfo kTeapot{"teapot", "document 002's Fig. 3: a two-sided translucent Utah teapot over a blue ground",
+                        {0.2f, 0.75f, 0.0f}, 3.2f, 1, BlueGround, BuildTeapot};
+const SceneInfo kComplexity{"complexity",
+                            "document 004's depth complexity: depthComplexity camera-facing quads over the centre",
+                            kComplexityTarget, kComplexityRadius, 1, GreyWall, BuildComplexity};
+
 }  // namespace
 
+QuadStack ComplexityQuadStack(const TranslucencySettings& s) {
+  const glm::vec3 eye = ScriptedEye(kComplexityTarget, kComplexityRadius, 0);
+  const float distance = glm::length(kComplexityTarget - eye);
+  return {eye, kComplexityTarget, distance - 1.5f, distance + 1.5f, s.depthComplexity, s.seed};
+}
+
 const std::vector<const SceneInfo*>& Scenes() {
-  static const std::vector<const SceneInfo*> scenes = {&kSmoke, &kFire, &kShards};
+  static const std::vector<const SceneInfo*> scenes = {&kSmoke, &kFire, &kShards, &kTeapot, &kComplexity};
   return scenes;
 }
 
@@ -137,6 +212,11 @@ std::string SceneNames() {
   std::string names;
   for (const SceneInfo* s : Scenes()) names += (names.empty() ? "" : ", ") + std::string(s->name);
   return names;
+}
+
+glm::vec3 ScriptedEye(const glm::vec3& cameraTarget, float cameraRadius, uint32_t frame) {
+  const float angle = 0.3f * std::sin(frame * 0.01f);  // a slow swing, slightly above the target
+  return cameraTarget + glm::vec3(cameraRadius * std::sin(angle), 1.2f, -cameraRadius * std::cos(angle));
 }
 
 glm::vec3 SceneLightDirection() { return glm::normalize(glm::vec3(-0.4f, 0.8f, -0.45f)); }

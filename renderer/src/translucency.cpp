@@ -208,12 +208,9 @@ const oit::Method* Translucency::MethodInstance(const oit::MethodInfo& method) c
 }
 
 Camera Translucency::CameraForFrame(uint32_t n) const {
-  const glm::vec3 target = scene_->cameraTarget;
-  const float angle = 0.3f * std::sin(n * 0.01f);
-  const float radius = scene_->cameraRadius;
   Camera c;
-  c.eye = target + glm::vec3(radius * std::sin(angle), 1.2f, -radius * std::cos(angle));
-  glm::mat4 view = glm::lookAtLH(c.eye, target, glm::vec3(0, 1, 0));
+  c.eye = ScriptedEye(scene_->cameraTarget, scene_->cameraRadius, n);
+  glm::mat4 view = glm::lookAtLH(c.eye, scene_->cameraTarget, glm::vec3(0, 1, 0));
   glm::mat4 proj =
       glm::perspectiveLH_ZO(glm::radians(50.0f), float(settings_.width) / float(settings_.height), 0.1f, 40.0f);
   c.viewProj = proj * view;

@@ -138,10 +138,10 @@ TEST_F(MethodFamilyTest, AMissingIncludeIsRefusedWithTheCompilersMessage) {
 
 TEST_F(MethodFamilyTest, AnUnknownSceneIsRefusedWithTheSceneNames) {
   TranslucencySettings s;
-  s.scene = "teapot";
+  s.scene = "no-such-scene";
   std::string error;
   EXPECT_EQ(Translucency::Create(device.Get(), context.Get(), s, &error), nullptr);
-  EXPECT_NE(error.find("teapot"), std::string::npos) << error;
+  EXPECT_NE(error.find("no-such-scene"), std::string::npos) << error;
   EXPECT_NE(error.find("smoke, fire, shards"), std::string::npos) << error;
 }
 

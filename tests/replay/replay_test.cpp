@@ -151,7 +151,7 @@ TEST_F(ReplayTest, ParticleCountAfterNFramesEqualsTheCpuModel) {
 }
 
 TEST_F(ReplayTest, TheSameFrameRenderedTwiceIsBitIdentical) {
-  for (const char* scene : {"smoke", "shards"})
+  for (const char* scene : {"smoke", "shards", "teapot", "complexity"})
     for (const MethodInfo* method : renderer::oit::Methods()) {
       const TranslucencySettings s = Small(scene);
       const int frames = std::string(scene) == "smoke" ? 20 : 2;

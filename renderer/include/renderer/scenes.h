@@ -46,6 +46,9 @@ const SceneInfo* FindScene(std::string_view name);
 // "smoke, fire, shards" for usage messages.
 std::string SceneNames();
 
+// Where the scripted camera of a scene with that target and radius is at frame n.
+glm::vec3 ScriptedEye(const glm::vec3& cameraTarget, float cameraRadius, uint32_t frame);
+
 // The direction towards the scenes' one light.
 glm::vec3 SceneLightDirection();
 

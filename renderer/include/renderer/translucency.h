@@ -44,6 +44,9 @@ struct TranslucencySettings {
   uint32_t extraShards = 0;       // the particle scenes: also draw this many shards (the heavy bench scene)
   float shardSurfaceTint = 0.5f;  // 0: neutral surface colour (tint only in transmission)
   bool shardsAllRed = false;      // every shard transmits (1, 0.15, 0.15)
+  // The complexity scene: how many translucent quads overlap over the centre of the
+  // frame (1..64), the depth complexity that exact methods' per-pixel storage grows with.
+  uint32_t depthComplexity = 8;
   // Background.
   bool neutralBackground = false;  // a plain grey wall instead of coloured stripes
   bool timestamps = false;         // per-pass TIMESTAMP queries and the first method pass's statistics (LastTimes)

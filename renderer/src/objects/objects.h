@@ -3,9 +3,11 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
+#include "renderer/meshes.h"
 #include "renderer/particle_system.h"
 #include "renderer/translucent_object.h"
 
@@ -30,6 +32,12 @@ struct ShardSettings {
   bool allRed = false;       // every shard transmits (1, 0.15, 0.15)
 };
 std::unique_ptr<TranslucentObject> CreateShards(const ObjectSetup& setup, const ShardSettings& shards,
+                                                std::string* error);
+
+// Translucent triangle meshes (shaders_hlsl/meshes.fx) in one vertex and index
+// buffer, lit two-sided; back to front sorts their triangles (meshes.cpp says when
+// that is exact).
+std::unique_ptr<TranslucentObject> CreateMeshes(const ObjectSetup& setup, const std::vector<TriangleMesh>& meshes,
                                                 std::string* error);
 
 }  // namespace renderer

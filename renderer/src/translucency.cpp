@@ -65,21 +65,38 @@ struct Translucency::Impl {
 // The objects as a method's passes draw them: every object, with the method of the frame.
 class Translucency::FrameGeometry final : public oit::Geometry {
  public:
-  FrameGeometry(Impl& impl, const oit::MethodInfo& method, const Camera& camera)
-      : impl_(impl), method_(method), camera_(camera) {}
+  FrameGeometry(Impl& impl, const oit::MethodInfo& method, const Camera& camera, const oit::FrameDesc& frame)
+      : impl_(impl), method_(method), camera_(camera), frame_(frame) {}
   void Draw(DeviceContext* context, const char* pass, oit::DrawOrder order) override {
     for (auto& object : impl_.objects) {
       std::string why;
-      if (!object->Draw(context, method_, camera_, pass, order, &why) && error.empty())
-        error = std::string(object->Name()) + " with " + method_.name + ": " + why;
+      if (!object->Draw(context, method_, camera_, pass, order, &why)) Fail(*object, why);
     }
+  }
+  // Then unbinds the pixel shader's resources: the object's buffers it read are
+  // stream-output targets in the next frame's update, and the method's per-pixel
+  // buffers UAVs again (D3D11 would unbind them with a hazard warning).
+  void DrawFullscreen(DeviceContext* context, const char* pass) override {
+    for (auto& object : impl_.objects) {
+      std::string why;
+      if (!object->DrawFullscreen(context, method_, camera_, frame_, pass, &why)) Fail(*object, why);
+    }
+    ShaderResourceView* none[COMMONSHADER_INPUT_RESOURCE_SLOT_COUNT] = {};
+    context->PSSetShaderResources(0, COMMONSHADER_INPUT_RESOURCE_SLOT_COUNT, none);
+  }
+  void SetEffectVariables(const std::function<void(fx::Effect&)>& set) override {
+    for (auto& object : impl_.objects) set(*object->MethodEffect(method_));
   }
   std::string error;
 
  private:
+  void Fail(const TranslucentObject& object, const std::string& why) {
+    if (error.empty()) error = std::string(object.Name()) + " with " + method_.name + ": " + why;
+  }
   Impl& impl_;
   const oit::MethodInfo& method_;
   const Camera& camera_;
+  oit::FrameDesc frame_;
 };
 
 namespace {
@@ -188,7 +205,9 @@ Translucency::MethodState* Translucency::Prepare(const oit::MethodInfo& info) {
   if (auto found = m.methods.find(info.name); found != m.methods.end()) return &found->second;
   MethodState state;
   std::string why;
-  state.method = info.create(info, {m.device, {settings_.width, settings_.height, 1}}, &why);
+  const oit::MethodSetup setup{
+      m.device, {settings_.width, settings_.height, 1}, uint32_t(m.objects.size()), settings_.fragmentStorage};
+  state.method = info.create(info, setup, &why);
   if (!state.method) return error_ = std::string(info.name) + ": " + why, nullptr;
   for (auto& object : m.objects)
     if (!object->PrepareMethod(info, &why))
@@ -234,7 +253,7 @@ bool Translucency::RenderFrame(const oit::MethodInfo& method) {
   if (timed) m.Stamp(*state, 1);
   for (auto& object : m.objects) object->Update(ctx, count);
   if (timed) m.Stamp(*state, 2);
-  FrameGeometry geometry(m, method, camera_);
+  FrameGeometry geometry(m, method, camera_, {settings_.width, settings_.height, 1});
   FrameMarks marks(ctx, timed ? &state->stamps : nullptr, m.firstPassStatistics.Get());
   state->method->Render({ctx, {m.frameRtv.Get(), m.dsv.Get()}, &geometry, &marks});
   marks.Finish();

@@ -47,6 +47,8 @@ struct TranslucencySettings {
   // The complexity scene: how many translucent quads overlap over the centre of the
   // frame (1..64), the depth complexity that exact methods' per-pixel storage grows with.
   uint32_t depthComplexity = 8;
+  // The fragment-buffer methods' storage (prefix-sum's sizing, linked-list's pool).
+  oit::FragmentStorage fragmentStorage;
   // Background.
   bool neutralBackground = false;  // a plain grey wall instead of coloured stripes
   bool timestamps = false;         // per-pass TIMESTAMP queries and the first method pass's statistics (LastTimes)

@@ -125,9 +125,7 @@ class Smoke final : public TranslucentObject {
     SmokeEffect& e = effects_.at(method.name);
     fx::EffectPass* p = FindPass(e.effect.Get(), nullptr, pass, error);
     if (!p) return false;
-    e.viewProj->SetMatrixTranspose(&camera.viewProj[0][0]);  // GLM stores columns: FX11's row-major, transposed
-    const float eye[4] = {camera.eye.x, camera.eye.y, camera.eye.z, 0};
-    e.eye->SetFloatVector(eye);
+    SetCamera(e, camera);
     Buffer* input = particles_->current();
     UINT sortedCount = 0;
     if (order == oit::DrawOrder::BackToFront) input = SortBackToFront(ctx, camera, &sortedCount);
@@ -143,7 +141,25 @@ class Smoke final : public TranslucentObject {
     return true;
   }
 
+  fx::Effect* MethodEffect(const oit::MethodInfo& method) override { return effects_.at(method.name).effect.Get(); }
+
+  // ShadeTriangle reads the particles by index from the buffer the frame drew (the
+  // deferred passes draw in submission order).
+  bool DrawFullscreen(DeviceContext* ctx, const oit::MethodInfo& method, const Camera& camera,
+                      const oit::FrameDesc& frame, const char* pass, std::string* error) override {
+    SmokeEffect& e = effects_.at(method.name);
+    SetCamera(e, camera);
+    e.effect->GetVariableByName("Particles")->AsShaderResource()->SetResource(particles_->currentRawView());
+    return DrawFullscreenPass(ctx, e.effect.Get(), camera, frame, pass, error);
+  }
+
  private:
+  static void SetCamera(SmokeEffect& e, const Camera& camera) {
+    e.viewProj->SetMatrixTranspose(&camera.viewProj[0][0]);  // GLM stores columns: FX11's row-major, transposed
+    const float eye[4] = {camera.eye.x, camera.eye.y, camera.eye.z, 0};
+    e.eye->SetFloatVector(eye);
+  }
+
   bool CreateLayout(fx::Effect* effect, std::string* error) {
     fx::PASS_DESC desc;
     const INPUT_ELEMENT_DESC elements[] = {

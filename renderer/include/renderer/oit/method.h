@@ -11,12 +11,17 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "rhi/rhi.h"
+
+namespace fx {
+class Effect;
+}
 
 namespace renderer::oit {
 
@@ -52,6 +57,14 @@ enum class DrawOrder {
 class Geometry {
  public:
   virtual void Draw(rhi::DeviceContext* context, const char* pass, DrawOrder order) = 0;
+  // Applies the pass `pass` of the object's effect to a full-screen triangle: a
+  // resolve that shades the object's stored fragments per pixel (deferred shading,
+  // shaders_hlsl/oit/common.fxh). One object's pass covers the frame, so a method that
+  // resolves this way refuses scenes of several objects (MethodSetup::objectCount).
+  virtual void DrawFullscreen(rhi::DeviceContext* context, const char* pass) = 0;
+  // Calls `set` with every object's effect for the method: the variables of the
+  // method's own passes in those effects (the views of its per-pixel buffers).
+  virtual void SetEffectVariables(const std::function<void(fx::Effect& effect)>& set) = 0;
 
  protected:
   ~Geometry() = default;
@@ -83,14 +96,30 @@ class Method {
   virtual uint64_t MemoryBytes() const = 0;
   // Its passes in the order Render runs them (the names of their effect passes).
   virtual const std::vector<std::string>& PassNames() const = 0;
+  // Translucent fragments the method could not store in the last frame whose count
+  // has come back from the GPU (a frame or more late: no wait), for methods with
+  // bounded per-fragment storage; never dropped silently. 0 for the others.
+  virtual uint64_t LostFragments() const { return 0; }
 };
 
 struct MethodInfo;
+
+// How the fragment-buffer methods (prefix-sum, linked-list) size their storage.
+struct FragmentStorage {
+  // prefix-sum: false (the default) sizes the fragment buffer from earlier frames'
+  // totals, read back a frame late without waiting, grown with hysteresis; true sizes
+  // it to each frame's own total, read back in the frame (the CPU waits for the GPU).
+  bool exactSizing = false;
+  // linked-list: the node pool's capacity, in nodes per pixel of the frame.
+  uint32_t nodesPerPixel = 16;
+};
 
 // What a method is created with.
 struct MethodSetup {
   rhi::Device* device = nullptr;
   FrameDesc frame;
+  uint32_t objectCount = 0;  // the scene's translucent objects
+  FragmentStorage fragmentStorage;
 };
 
 using MethodFactory = std::unique_ptr<Method> (*)(const MethodInfo& info, const MethodSetup& setup,

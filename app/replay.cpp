@@ -215,6 +215,7 @@ std::vector<BenchCase> BenchCases(const Options& o) {
 // The timed samples of one method (medians are taken at the end).
 struct MethodSamples {
   std::vector<double> wall, cpu, opaque, update, firstPass, laterPasses, gpu, fragments;
+  std::vector<std::vector<double>> passes;  // per pass of the method, as its PassNames()
 };
 
 // Renders and times one frame of `t`; the GPU times only when its timestamps came back.
@@ -230,6 +231,8 @@ void TimeFrame(renderer::Translucency& t, const MethodInfo& method, MethodSample
   samples.opaque.push_back(times.opaqueMs), samples.update.push_back(times.updateMs);
   double later = 0;
   for (size_t i = 1; i < times.methodPassMs.size(); ++i) later += times.methodPassMs[i];
+  samples.passes.resize(times.methodPassMs.size());
+  for (size_t i = 0; i < times.methodPassMs.size(); ++i) samples.passes[i].push_back(times.methodPassMs[i]);
   samples.firstPass.push_back(times.methodPassMs.at(0)), samples.laterPasses.push_back(later);
   samples.gpu.push_back(times.totalMs), samples.fragments.push_back(double(times.firstPassFragments));
 }
@@ -239,8 +242,6 @@ int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
   const int frames = o.frames > 0 ? o.frames : 60;
   std::printf("replay --bench --scene %s on %s, %d timed frames (medians)\n", o.scene.c_str(),
               device->GetAdapterName(), frames);
-  const std::vector<const MethodInfo*>& methods = renderer::oit::Methods();
-  const size_t n = methods.size();
   for (const BenchCase& bc : BenchCases(o)) {
     renderer::TranslucencySettings base = bc.settings;
     base.timestamps = true;
@@ -255,14 +256,25 @@ int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
                 "Gfrag/s", "MiB");
     // One replay per method, each warmed up; then frame i of every method in turn, so that
     // all methods see the same load on a shared machine (lavapipe's cores) over the run.
-    std::vector<std::unique_ptr<renderer::Translucency>> replays(n);
-    for (size_t mi = 0; mi < n; ++mi) {
-      replays[mi] = Make(device, ctx, base);
-      for (int i = 0; i < warmup; ++i) {
-        Render(*replays[mi], *methods[mi]);
-        replays[mi]->LastTimes();
+    // A method that refuses the scene (the fragment-buffer methods: one object) is left
+    // out with its reason.
+    std::vector<const MethodInfo*> methods;
+    std::vector<std::unique_ptr<renderer::Translucency>> replays;
+    for (const MethodInfo* method : renderer::oit::Methods()) {
+      auto replay = Make(device, ctx, base);
+      if (!replay->RenderFrame(*method)) {
+        std::printf("%-16s skipped: %s\n", method->name, replay->error().c_str());
+        continue;
       }
+      replay->LastTimes();
+      for (int i = 1; i < warmup; ++i) {
+        Render(*replay, *method);
+        replay->LastTimes();
+      }
+      methods.push_back(method);
+      replays.push_back(std::move(replay));
     }
+    const size_t n = methods.size();
     std::vector<MethodSamples> samples(n);
     for (int i = 0; i < frames; ++i)
       for (size_t mi = 0; mi < n; ++mi) TimeFrame(*replays[mi], *methods[mi], samples[mi]);
@@ -287,6 +299,15 @@ int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
                   pass3dMs, Median(m.laterPasses), cpuMs[name], Median(m.wall), static_cast<unsigned long long>(live),
                   base.scene == "shards" ? base.shardCount : base.extraShards, fragmentCount / 1e6,
                   pass3dMs > 0 ? fragmentCount / (pass3dMs * 1e6) : 0.0, mib);
+    }
+    // Methods of more than two passes, pass by pass (the fragment-buffer methods' count, scan, fill, resolve).
+    for (size_t mi = 0; mi < n; ++mi) {
+      const std::vector<std::string>& names = replays[mi]->MethodInstance(*methods[mi])->PassNames();
+      if (names.size() <= 2 || samples[mi].passes.size() != names.size()) continue;
+      std::printf("%-16s GPU ms per pass:", methods[mi]->name);
+      for (size_t i = 0; i < names.size(); ++i)
+        std::printf(" %s %.3f", names[i].c_str(), Median(samples[mi].passes[i]));
+      std::printf("\n");
     }
     std::printf("%s: WBOIT/alpha GPU frame-time ratio %.3f (target <= 1.27; paper, smoke on D3D11: "
                 "1.183/0.935 = 1.265); CPU ms per frame: alpha %.3f, WBOIT %.3f\n",

@@ -121,8 +121,10 @@ void Shade(Billboard b, out float3 c, out float a, out float3 t) { ShadePuff(Puf
 // SV_PrimitiveID: one point per particle) to every fragment of its billboard.
 uint TriangleId(Billboard b, uint primitiveId) { return b.particle; }
 
-// What GSBillboard gives Shade, from the particle and the pixel: the uv is the world
-// point the pixel shows projected onto the billboard's basis. SampleLevel 0, not
+// What GSBillboard gives Shade, from the particle and the pixel: the uv is the point
+// where the eye's ray through the pixel meets the billboard's plane, projected onto
+// its basis (the ray's direction comes from the unprojected pixel; intersecting the
+// plane avoids the depth's precision, which 1/255 of the puff's shading needs). SampleLevel 0, not
 // Sample: a resolve's neighbouring pixels shade other particles, so derivatives mean
 // nothing there; the puff has one mip level, where both read the same texels.
 void ShadeTriangle(uint id, float4 position, out float3 c, out float a, out float3 t) {
@@ -134,7 +136,9 @@ void ShadeTriangle(uint id, float4 position, out float3 c, out float a, out floa
   p.kindLife = Particles.Load2(base + 32);
   Center center = VSSmoke(p);
   BillboardFrame f = FrameOf(center);
-  float3 offset = (UnprojectPixel(position) - center.center) / f.size;
+  float3 ray = UnprojectPixel(position) - Eye;
+  float3 world = Eye + ray * (dot(center.center - Eye, f.z) / dot(ray, f.z));
+  float3 offset = (world - center.center) / f.size;
   Billboard b;
   b.position = position;
   b.uv = float2(dot(offset, f.x), -dot(offset, f.y)) * 0.5 + 0.5;

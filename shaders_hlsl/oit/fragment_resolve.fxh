@@ -32,9 +32,11 @@ BlendState CompositeOverOpaque {
 #error this method shades in its resolve: the object must define OBJECT_DEFERRED, TriangleId and ShadeTriangle (oit/common.fxh)
 #endif
 
-// A pixel's fragments up to this many are sorted in registers; deeper pixels are
-// walked once per fragment, picking the next nearest each time (exact at any depth).
-static const uint kFragmentsSortedInRegisters = 32;
+// The nearest fragments not yet composited are sorted in registers this many at a
+// time: one walk of the pixel's fragments per batch, so exact at any depth (a pixel of
+// n fragments takes ceil((n + 1) / 32) walks; lavapipe caps a loop at 65535 turns,
+// which one walk of a deep pixel stays far below).
+static const uint kBatch = 32;
 
 bool Nearer(Fragment a, Fragment b) { return a.depth < b.depth || (a.depth == b.depth && a.id < b.id); }
 
@@ -58,38 +60,30 @@ struct ResolveOut {
 
 ResolveOut PSResolve(float4 position : SV_Position) {
   uint2 pixel = uint2(position.xy);
-  Fragment sorted[kFragmentsSortedInRegisters];
-  uint count = 0;
-  for (FragmentCursor at = FirstFragment(pixel); !AtEnd(at); at = NextFragment(at)) {
-    if (count < kFragmentsSortedInRegisters) sorted[count] = FragmentAt(at);
-    ++count;
-  }
-  if (count == 0) discard;
   float3 C = 0, T = 1;
-  if (count <= kFragmentsSortedInRegisters) {
-    for (uint i = 1; i < count; ++i)  // insertion sort, nearest first
-      for (uint j = i; j > 0 && Nearer(sorted[j], sorted[j - 1]); --j) {
-        Fragment f = sorted[j];
-        sorted[j] = sorted[j - 1];
-        sorted[j - 1] = f;
-      }
-    for (uint k = 0; k < count; ++k) CompositeFragment(sorted[k], position.xy, C, T);
-  } else {
-    Fragment previous = (Fragment)0;
-    for (uint k = 0; k < count; ++k) {
-      Fragment next = (Fragment)0;
-      bool found = false;
-      for (FragmentCursor at = FirstFragment(pixel); !AtEnd(at); at = NextFragment(at)) {
-        Fragment f = FragmentAt(at);
-        if ((k == 0 || Nearer(previous, f)) && (!found || Nearer(f, next))) {
-          next = f;
-          found = true;
-        }
-      }
-      CompositeFragment(next, position.xy, C, T);
-      previous = next;
+  Fragment batch[kBatch];
+  Fragment last = (Fragment)0;  // the farthest fragment composited so far
+  bool started = false;
+  uint kept;
+  do {
+    // The kBatch nearest fragments behind `last`, in order (insertion into a sorted batch).
+    kept = 0;
+    for (FragmentCursor at = FirstFragment(pixel); !AtEnd(at); at = NextFragment(at)) {
+      Fragment f = FragmentAt(at);
+      if (started && !Nearer(last, f)) continue;  // composited in an earlier batch
+      if (kept == kBatch && !Nearer(f, batch[kBatch - 1])) continue;
+      uint j = min(kept, kBatch - 1);
+      for (; j > 0 && Nearer(f, batch[j - 1]); --j) batch[j] = batch[j - 1];
+      batch[j] = f;
+      kept = min(kept + 1, kBatch);
     }
-  }
+    for (uint i = 0; i < kept; ++i) CompositeFragment(batch[i], position.xy, C, T);
+    if (kept > 0) {
+      last = batch[kept - 1];
+      started = true;
+    }
+  } while (kept == kBatch);
+  if (!started) discard;
   ResolveOut o;
   o.color = float4(C, 0);
   o.transmission = float4(T, 1);

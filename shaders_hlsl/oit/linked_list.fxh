@@ -2,8 +2,8 @@
 // (prefix_sum.fxh): one geometry pass instead of two, a fixed node pool instead of
 // a buffer sized from a count. Passes:
 //   Link     (object) every fragment that passes the opaque depth test
-//            ([earlydepthstencil]) takes a node (the pool's hidden counter,
-//            IncrementCounter), stores (triangle id, depth) in it and pushes it on its
+//            ([earlydepthstencil]) takes a node (InterlockedAdd on NodeCounter, one
+//            word), stores (triangle id, depth) in it and pushes it on its
 //            pixel's list (InterlockedExchange on Heads: R32 words, pixel y * FrameWidth
 //            + x, cleared to 0xFFFFFFFF).
 //            A fragment whose node lies past the pool is dropped; the counter still

@@ -12,12 +12,15 @@ bool CreateRawView(rhi::Device* device, rhi::Buffer* buffer, uint32_t bytes, rhi
   return rhi::SUCCEEDED(device->CreateShaderResourceView(buffer, &desc, out->GetAddressOf()));
 }
 
-bool DrawFullscreenPass(rhi::DeviceContext* context, fx::Effect* effect, const Camera& camera,
-                        const oit::FrameDesc& frame, const char* pass, std::string* error) {
-  fx::EffectPass* p = FindPass(effect, nullptr, pass, error);
-  if (!p) return false;
+void SetInverseViewProj(fx::Effect* effect, const Camera& camera) {
   const glm::mat4 inverse = glm::inverse(camera.viewProj);
   effect->GetVariableByName("InvViewProj")->AsMatrix()->SetMatrixTranspose(&inverse[0][0]);  // GLM: columns
+}
+
+bool DrawFullscreenPass(rhi::DeviceContext* context, fx::Effect* effect, const oit::FrameDesc& frame,
+                        const char* pass, std::string* error) {
+  fx::EffectPass* p = FindPass(effect, nullptr, pass, error);
+  if (!p) return false;
   const float size[4] = {float(frame.width), float(frame.height), 0, 0};
   effect->GetVariableByName("FrameSize")->AsVector()->SetFloatVector(size);
   context->IASetInputLayout(nullptr);

@@ -106,7 +106,7 @@ class Meshes final : public TranslucentObject {
     if (indices_.empty()) return true;
     MeshEffect& e = effects_.at(method.name);
     SetCamera(e, camera);
-    return DrawFullscreenPass(ctx, e.effect.Get(), camera, frame, pass, error);
+    return DrawFullscreenPass(ctx, e.effect.Get(), frame, pass, error);
   }
 
  private:
@@ -114,6 +114,7 @@ class Meshes final : public TranslucentObject {
     e.viewProj->SetMatrixTranspose(&camera.viewProj[0][0]);  // GLM stores columns: FX11's row-major, transposed
     const float eye[4] = {camera.eye.x, camera.eye.y, camera.eye.z, 0};
     e.eye->SetFloatVector(eye);
+    SetInverseViewProj(e.effect.Get(), camera);
   }
 
   void Append(const TriangleMesh& mesh) {

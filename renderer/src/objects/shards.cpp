@@ -157,7 +157,7 @@ class Shards final : public TranslucentObject {
     if (instances_.empty()) return true;
     ShardEffect& e = effects_.at(method.name);
     SetCamera(e, camera);
-    return DrawFullscreenPass(ctx, e.effect.Get(), camera, frame, pass, error);
+    return DrawFullscreenPass(ctx, e.effect.Get(), frame, pass, error);
   }
 
  private:
@@ -165,6 +165,7 @@ class Shards final : public TranslucentObject {
     e.viewProj->SetMatrixTranspose(&camera.viewProj[0][0]);  // GLM stores columns: FX11's row-major, transposed
     const float eye[4] = {camera.eye.x, camera.eye.y, camera.eye.z, 0};
     e.eye->SetFloatVector(eye);
+    SetInverseViewProj(e.effect.Get(), camera);
   }
 
   bool CreateBuffer(UINT size, USAGE usage, UINT bind, const void* data, ComPtr<Buffer>* out) {

@@ -126,6 +126,7 @@ class Smoke final : public TranslucentObject {
     fx::EffectPass* p = FindPass(e.effect.Get(), nullptr, pass, error);
     if (!p) return false;
     SetCamera(e, camera);
+    e.effect->GetVariableByName("Particles")->AsShaderResource()->SetResource(particles_->currentRawView());
     Buffer* input = particles_->current();
     UINT sortedCount = 0;
     if (order == oit::DrawOrder::BackToFront) input = SortBackToFront(ctx, camera, &sortedCount);
@@ -150,7 +151,7 @@ class Smoke final : public TranslucentObject {
     SmokeEffect& e = effects_.at(method.name);
     SetCamera(e, camera);
     e.effect->GetVariableByName("Particles")->AsShaderResource()->SetResource(particles_->currentRawView());
-    return DrawFullscreenPass(ctx, e.effect.Get(), camera, frame, pass, error);
+    return DrawFullscreenPass(ctx, e.effect.Get(), frame, pass, error);
   }
 
  private:
@@ -158,6 +159,7 @@ class Smoke final : public TranslucentObject {
     e.viewProj->SetMatrixTranspose(&camera.viewProj[0][0]);  // GLM stores columns: FX11's row-major, transposed
     const float eye[4] = {camera.eye.x, camera.eye.y, camera.eye.z, 0};
     e.eye->SetFloatVector(eye);
+    SetInverseViewProj(e.effect.Get(), camera);
   }
 
   bool CreateLayout(fx::Effect* effect, std::string* error) {

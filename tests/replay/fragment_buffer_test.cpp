@@ -36,7 +36,7 @@ using renderer::oit::MethodInfo;
 
 class PrefixScanTest : public GpuTest, public ::testing::WithParamInterface<uint32_t> {
  protected:
-  ComPtr<rhi::Buffer> RawBuffer(const std::vector<uint32_t> &words, ComPtr<rhi::UnorderedAccessView> *uav) {
+  ComPtr<rhi::Buffer> RawBuffer(const std::vector<uint32_t>& words, ComPtr<rhi::UnorderedAccessView>* uav) {
     ComPtr<rhi::Buffer> b = MakeBuffer(rhi::BIND_UNORDERED_ACCESS, words.data(), UINT(words.size() * 4),
                                        rhi::USAGE_DEFAULT, rhi::RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS);
     rhi::UNORDERED_ACCESS_VIEW_DESC desc{};
@@ -52,7 +52,7 @@ TEST_P(PrefixScanTest, EqualsTheCpuScan) {
   const uint32_t length = GetParam();
   std::mt19937 random(length);
   std::vector<uint32_t> input(length);
-  for (uint32_t &v : input) v = random() % 16;  // per-pixel counts: the sum stays far below 2^32
+  for (uint32_t& v : input) v = random() % 16;  // per-pixel counts: the sum stays far below 2^32
   ComPtr<rhi::UnorderedAccessView> inputUav, outputUav, totalUav;
   ComPtr<rhi::Buffer> in = RawBuffer(input, &inputUav);
   ComPtr<rhi::Buffer> out = RawBuffer(std::vector<uint32_t>(length, 0xdeadbeef), &outputUav);
@@ -94,7 +94,7 @@ constexpr uint32_t kMaxRecords = 1 << 20;
 
 class RecordingMethod final : public renderer::oit::Method {
  public:
-  RecordingMethod(rhi::Device *device, const renderer::oit::FrameDesc &frame) : frame_(frame) {
+  RecordingMethod(rhi::Device* device, const renderer::oit::FrameDesc& frame) : frame_(frame) {
     const rhi::BUFFER_DESC desc{kMaxRecords * sizeof(FragmentRecord), rhi::USAGE_DEFAULT,
                                 rhi::BIND_UNORDERED_ACCESS,           0,
                                 rhi::RESOURCE_MISC_BUFFER_STRUCTURED, sizeof(FragmentRecord)};
@@ -105,12 +105,12 @@ class RecordingMethod final : public renderer::oit::Method {
     u.Buffer = {0, kMaxRecords, rhi::BUFFER_UAV_FLAG_APPEND};
     device->CreateUnorderedAccessView(records_.Get(), &u, uav_.GetAddressOf());
   }
-  void Render(const renderer::oit::RenderArgs &a) override {
+  void Render(const renderer::oit::RenderArgs& a) override {
     a.marks->BeginPass(0);
-    rhi::UnorderedAccessView *uav = uav_.Get();
+    rhi::UnorderedAccessView* uav = uav_.Get();
     const UINT zero = 0;
     a.context->OMSetRenderTargetsAndUnorderedAccessViews(0, nullptr, a.targets.depth, 0, 1, &uav, &zero);
-    a.geometry->SetEffectVariables([&](fx::Effect &e) {
+    a.geometry->SetEffectVariables([&](fx::Effect& e) {
       e.GetVariableByName("Records")->AsUnorderedAccessView()->SetUnorderedAccessView(uav_.Get());
       e.GetVariableByName("RecordWidth")->AsScalar()->SetInt(int(frame_.width));
       const float size[4] = {float(frame_.width), float(frame_.height), 0, 0};
@@ -120,10 +120,10 @@ class RecordingMethod final : public renderer::oit::Method {
     a.context->OMSetRenderTargets(0, nullptr, nullptr);
   }
   uint64_t MemoryBytes() const override { return 0; }
-  const std::vector<std::string> &PassNames() const override { return passes_; }
+  const std::vector<std::string>& PassNames() const override { return passes_; }
 
-  rhi::Buffer *records() const { return records_.Get(); }
-  rhi::UnorderedAccessView *uav() const { return uav_.Get(); }
+  rhi::Buffer* records() const { return records_.Get(); }
+  rhi::UnorderedAccessView* uav() const { return uav_.Get(); }
 
  private:
   renderer::oit::FrameDesc frame_;
@@ -132,8 +132,8 @@ class RecordingMethod final : public renderer::oit::Method {
   std::vector<std::string> passes_{"Record"};
 };
 
-std::unique_ptr<renderer::oit::Method> CreateRecording(const MethodInfo &, const renderer::oit::MethodSetup &setup,
-                                                       std::string *) {
+std::unique_ptr<renderer::oit::Method> CreateRecording(const MethodInfo&, const renderer::oit::MethodSetup& setup,
+                                                       std::string*) {
   return std::make_unique<RecordingMethod>(setup.device, setup.frame);
 }
 const MethodInfo kRecord{"record",
@@ -144,7 +144,7 @@ const MethodInfo kRecord{"record",
                          CreateRecording};
 
 struct SceneCase {
-  const char *scene;
+  const char* scene;
   int frames;  // the frame recorded and compared is the last
   // Of ShadeTriangle against Shade: 1/255; the billboards 1.5/255, where the
   // puff's density is steepest and the rasterizer's interpolated uv
@@ -155,7 +155,7 @@ struct SceneCase {
 
 class FragmentBufferTest : public GpuTest, public ::testing::WithParamInterface<SceneCase> {
  protected:
-  static TranslucencySettings Settings(const char *scene) {
+  static TranslucencySettings Settings(const char* scene) {
     TranslucencySettings s;
     s.scene = scene;
     s.width = 64, s.height = 36;
@@ -164,20 +164,20 @@ class FragmentBufferTest : public GpuTest, public ::testing::WithParamInterface<
     s.fragmentStorage.nodesPerPixel = 64;
     return s;
   }
-  std::unique_ptr<Translucency> Make(const TranslucencySettings &s) {
+  std::unique_ptr<Translucency> Make(const TranslucencySettings& s) {
     std::string error;
     auto t = Translucency::Create(device.Get(), context.Get(), s, &error);
     EXPECT_NE(t, nullptr) << error;
     return t;
   }
   // The scene's frames up to the last with `method`, and the last with `last`.
-  std::vector<uint8_t> Render(Translucency &t, const MethodInfo &last, int frames) {
+  std::vector<uint8_t> Render(Translucency& t, const MethodInfo& last, int frames) {
     for (int i = 0; i + 1 < frames; ++i) EXPECT_TRUE(t.RenderFrame(*renderer::oit::FindMethod("alpha"))) << t.error();
     EXPECT_TRUE(t.RenderFrame(last)) << t.error();
     return t.ReadFrame();
   }
-  std::vector<FragmentRecord> Records(Translucency &t) {
-    auto *method = const_cast<RecordingMethod *>(dynamic_cast<const RecordingMethod *>(t.MethodInstance(kRecord)));
+  std::vector<FragmentRecord> Records(Translucency& t) {
+    auto* method = const_cast<RecordingMethod*>(dynamic_cast<const RecordingMethod*>(t.MethodInstance(kRecord)));
     const uint32_t sentinel = 0;
     ComPtr<rhi::Buffer> count = MakeBuffer(0, &sentinel, 4);
     context->CopyStructureCount(count.Get(), 0, method->uav());
@@ -196,7 +196,7 @@ TEST_P(FragmentBufferTest, DeferredShadingEqualsForwardShadingForEveryFragment) 
   const std::vector<FragmentRecord> records = Records(*t);
   ASSERT_GT(records.size(), 200u);
   float worst = 0;
-  for (const FragmentRecord &r : records)
+  for (const FragmentRecord& r : records)
     for (int c = 0; c < 4; ++c)
       worst = std::max({worst, std::abs(r.forward[c] - r.deferred[c]),
                         std::abs(r.forwardTransmission[c] - r.deferredTransmission[c])});
@@ -207,9 +207,9 @@ TEST_P(FragmentBufferTest, DeferredShadingEqualsForwardShadingForEveryFragment) 
 // Front to back in double: C += T a c, T *= 1 - a (1 - t) for coloured
 // transmission (shards), 1 - a otherwise; frame = C + T * opaque; stored as
 // RGBA8 rounds.
-std::vector<uint8_t> CpuComposite(std::vector<FragmentRecord> records, const std::vector<uint8_t> &opaque,
+std::vector<uint8_t> CpuComposite(std::vector<FragmentRecord> records, const std::vector<uint8_t>& opaque,
                                   bool coloredTransmission) {
-  std::sort(records.begin(), records.end(), [](const FragmentRecord &a, const FragmentRecord &b) {
+  std::sort(records.begin(), records.end(), [](const FragmentRecord& a, const FragmentRecord& b) {
     if (a.pixel != b.pixel) return a.pixel < b.pixel;
     return a.depth != b.depth ? a.depth < b.depth : a.id < b.id;
   });
@@ -218,7 +218,7 @@ std::vector<uint8_t> CpuComposite(std::vector<FragmentRecord> records, const std
     const uint32_t pixel = records[i].pixel;
     double C[3] = {0, 0, 0}, T[3] = {1, 1, 1};
     for (; i < records.size() && records[i].pixel == pixel; ++i) {
-      const FragmentRecord &r = records[i];
+      const FragmentRecord& r = records[i];
       for (int c = 0; c < 3; ++c) {
         const double a = r.deferred[3];
         C[c] += T[c] * a * r.deferred[c];
@@ -233,7 +233,7 @@ std::vector<uint8_t> CpuComposite(std::vector<FragmentRecord> records, const std
   return image;
 }
 
-int LargestDifference(const std::vector<uint8_t> &a, const std::vector<uint8_t> &b) {
+int LargestDifference(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
   int worst = 0;
   for (size_t i = 0; i < a.size(); ++i)
     if (i % 4 != 3) worst = std::max(worst, std::abs(int(a[i]) - int(b[i])));
@@ -246,7 +246,7 @@ int LargestDifference(const std::vector<uint8_t> &a, const std::vector<uint8_t> 
 // one thread), so two fragments share a node and lists along triangle edges are
 // cut or loop. The method's code is D3D11's; its checks skip there until that
 // is understood (see the report in docs/PERF.md).
-bool AtomicCounterUnreliable(rhi::Device *device) {
+bool AtomicCounterUnreliable(rhi::Device* device) {
   return std::string(device->GetAdapterName()).find("llvmpipe") == 0;
 }
 
@@ -258,7 +258,7 @@ TEST_P(FragmentBufferTest, PrefixSumEqualsTheCpuCompositeOfTheSameFragments) {
   const std::vector<uint8_t> want =
       CpuComposite(Records(*recording), opaque, std::string(GetParam().scene) == "shards");
   EXPECT_GT(LargestDifference(want, opaque), 30) << "the translucent object shows";
-  const MethodInfo &prefixSum = *renderer::oit::FindMethod("prefix-sum");
+  const MethodInfo& prefixSum = *renderer::oit::FindMethod("prefix-sum");
   auto t = Make(s);
   ASSERT_TRUE(t);
   const std::vector<uint8_t> got = Render(*t, prefixSum, GetParam().frames);
@@ -271,7 +271,7 @@ TEST_P(FragmentBufferTest, LinkedListEqualsPrefixSum) {
   if (AtomicCounterUnreliable(device.Get())) GTEST_SKIP() << "lavapipe loses increments of one-address atomics";
   const TranslucencySettings s = Settings(GetParam().scene);
   std::vector<std::vector<uint8_t>> images;
-  for (const char *name : {"prefix-sum", "linked-list"}) {
+  for (const char* name : {"prefix-sum", "linked-list"}) {
     auto t = Make(s);
     ASSERT_TRUE(t);
     images.push_back(Render(*t, *renderer::oit::FindMethod(name), GetParam().frames));
@@ -283,7 +283,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, FragmentBufferTest,
                          ::testing::Values(SceneCase{"shards", 1, 1 / 255.0f}, SceneCase{"smoke", 20, 1.5f / 255},
                                            SceneCase{"fire", 20, 1.5f / 255}, SceneCase{"complexity", 1, 1 / 255.0f},
                                            SceneCase{"teapot", 1, 1 / 255.0f}),
-                         [](const ::testing::TestParamInfo<SceneCase> &info) { return std::string(info.param.scene); });
+                         [](const ::testing::TestParamInfo<SceneCase>& info) { return std::string(info.param.scene); });
 
 // ---------------------------------------------------------------------------
 
@@ -292,7 +292,7 @@ class FragmentStorageTest : public FragmentBufferTest {};
 // Document 004's step 4: the cursors end equal to the counts; step 3: the
 // offsets are the exclusive scan of the counts and the total their sum.
 TEST_F(FragmentStorageTest, CursorsEndEqualToCountsAndOffsetsScanThem) {
-  for (const char *scene : {"shards", "teapot"}) {
+  for (const char* scene : {"shards", "teapot"}) {
     auto t = Make(Settings(scene));
     ASSERT_TRUE(t);
     Render(*t, *renderer::oit::FindMethod("prefix-sum"), 1);
@@ -324,7 +324,7 @@ TEST_F(FragmentStorageTest, ALinkedListPoolTooSmallReportsTheFragmentsItLost) {
   s.fragmentStorage.nodesPerPixel = 1;
   auto t = Make(s);
   ASSERT_TRUE(t);
-  const MethodInfo &linked = *renderer::oit::FindMethod("linked-list");
+  const MethodInfo& linked = *renderer::oit::FindMethod("linked-list");
   for (int frame = 0; frame < 3; ++frame) {  // the shards do not move: every frame loses as many
     ASSERT_TRUE(t->RenderFrame(linked)) << t->error();
     t->ReadFrame();  // the GPU has finished the frame: the next one reads its
@@ -338,7 +338,7 @@ TEST_F(FragmentStorageTest, ALinkedListPoolTooSmallReportsTheFragmentsItLost) {
 TEST_F(FragmentStorageTest, AllFitsWhenThePoolIsLargeEnough) {
   auto t = Make(Settings("shards"));
   ASSERT_TRUE(t);
-  const MethodInfo &linked = *renderer::oit::FindMethod("linked-list");
+  const MethodInfo& linked = *renderer::oit::FindMethod("linked-list");
   for (int frame = 0; frame < 3; ++frame) {
     ASSERT_TRUE(t->RenderFrame(linked)) << t->error();
     t->ReadFrame();
@@ -347,7 +347,7 @@ TEST_F(FragmentStorageTest, AllFitsWhenThePoolIsLargeEnough) {
 }
 
 TEST_F(FragmentStorageTest, ScenesOfSeveralObjectsAreRefusedWithTheReason) {
-  for (const char *name : {"prefix-sum", "linked-list"}) {
+  for (const char* name : {"prefix-sum", "linked-list"}) {
     TranslucencySettings s = Settings("smoke");
     s.extraShards = 10;
     auto t = Make(s);

@@ -4,7 +4,8 @@
 
 namespace renderer {
 
-bool CreateRawView(rhi::Device* device, rhi::Buffer* buffer, uint32_t bytes, rhi::ComPtr<rhi::ShaderResourceView>* out) {
+bool CreateRawView(rhi::Device* device, rhi::Buffer* buffer, uint32_t bytes,
+                   rhi::ComPtr<rhi::ShaderResourceView>* out) {
   rhi::SHADER_RESOURCE_VIEW_DESC desc{};
   desc.Format = rhi::DXGI_FORMAT_R32_TYPELESS;
   desc.ViewDimension = rhi::SRV_DIMENSION_BUFFEREX;
@@ -17,8 +18,8 @@ void SetInverseViewProj(fx::Effect* effect, const Camera& camera) {
   effect->GetVariableByName("InvViewProj")->AsMatrix()->SetMatrixTranspose(&inverse[0][0]);  // GLM: columns
 }
 
-bool DrawFullscreenPass(rhi::DeviceContext* context, fx::Effect* effect, const oit::FrameDesc& frame,
-                        const char* pass, std::string* error) {
+bool DrawFullscreenPass(rhi::DeviceContext* context, fx::Effect* effect, const oit::FrameDesc& frame, const char* pass,
+                        std::string* error) {
   fx::EffectPass* p = FindPass(effect, nullptr, pass, error);
   if (!p) return false;
   const float size[4] = {float(frame.width), float(frame.height), 0, 0};

@@ -6,7 +6,7 @@ namespace renderer::oit {
 
 using namespace rhi;
 
-bool ViewedBuffer::CreateRaw(Device *device, uint32_t words) {
+bool ViewedBuffer::CreateRaw(Device* device, uint32_t words) {
   bytes = uint64_t(words) * 4;
   const BUFFER_DESC desc{
       words * 4, USAGE_DEFAULT, BIND_UNORDERED_ACCESS | BIND_SHADER_RESOURCE, 0, RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS,
@@ -24,7 +24,7 @@ bool ViewedBuffer::CreateRaw(Device *device, uint32_t words) {
          SUCCEEDED(device->CreateShaderResourceView(buffer.Get(), &s, srv.GetAddressOf()));
 }
 
-bool ViewedBuffer::CreateStructured(Device *device, uint32_t count, uint32_t stride, bool counter) {
+bool ViewedBuffer::CreateStructured(Device* device, uint32_t count, uint32_t stride, bool counter) {
   bytes = uint64_t(count) * stride;
   const BUFFER_DESC desc{
       count * stride, USAGE_DEFAULT, BIND_UNORDERED_ACCESS | BIND_SHADER_RESOURCE, 0, RESOURCE_MISC_BUFFER_STRUCTURED,
@@ -38,7 +38,7 @@ bool ViewedBuffer::CreateStructured(Device *device, uint32_t count, uint32_t str
          SUCCEEDED(device->CreateShaderResourceView(buffer.Get(), nullptr, srv.GetAddressOf()));
 }
 
-bool AcceptsOnlyOneObject(const MethodInfo &info, const MethodSetup &setup, std::string *error) {
+bool AcceptsOnlyOneObject(const MethodInfo& info, const MethodSetup& setup, std::string* error) {
   if (setup.objectCount <= 1) return true;
   *error = std::string(info.name) +
            " resolves with one object's full-screen pass (deferred shading from its "
@@ -48,15 +48,15 @@ bool AcceptsOnlyOneObject(const MethodInfo &info, const MethodSetup &setup, std:
   return false;
 }
 
-bool LateReadback::Create(Device *device, Arrived arrived) {
+bool LateReadback::Create(Device* device, Arrived arrived) {
   arrived_ = std::move(arrived);
   const BUFFER_DESC desc{4, USAGE_STAGING, 0, CPU_ACCESS_READ, 0, 0};
-  for (auto &buffer : staging_)
+  for (auto& buffer : staging_)
     if (FAILED(device->CreateBuffer(&desc, nullptr, buffer.GetAddressOf()))) return false;
   return SUCCEEDED(device->CreateBuffer(&desc, nullptr, now_.GetAddressOf()));
 }
 
-void LateReadback::Issue(DeviceContext *context, Buffer *source, uint64_t tag) {
+void LateReadback::Issue(DeviceContext* context, Buffer* source, uint64_t tag) {
   if (pending_ == kRing) {  // the GPU is a whole ring behind: wait for the oldest (at next_)
     uint32_t value = 0;
     if (Read(context, staging_[next_].Get(), true, &value)) arrived_(value, tags_[next_]);
@@ -69,7 +69,7 @@ void LateReadback::Issue(DeviceContext *context, Buffer *source, uint64_t tag) {
   ++pending_;
 }
 
-void LateReadback::Poll(DeviceContext *context) {
+void LateReadback::Poll(DeviceContext* context) {
   while (pending_ > 0) {
     const size_t oldest = (next_ + kRing - pending_) % kRing;
     uint32_t value = 0;
@@ -79,7 +79,7 @@ void LateReadback::Poll(DeviceContext *context) {
   }
 }
 
-uint32_t LateReadback::ReadNow(DeviceContext *context, Buffer *source) {
+uint32_t LateReadback::ReadNow(DeviceContext* context, Buffer* source) {
   const BOX first{0, 0, 0, 4, 1, 1};
   context->CopySubresourceRegion(now_.Get(), 0, 0, 0, 0, source, 0, &first);
   uint32_t value = 0;
@@ -87,7 +87,7 @@ uint32_t LateReadback::ReadNow(DeviceContext *context, Buffer *source) {
   return value;
 }
 
-bool LateReadback::Read(DeviceContext *context, Buffer *staging, bool wait, uint32_t *value) {
+bool LateReadback::Read(DeviceContext* context, Buffer* staging, bool wait, uint32_t* value) {
   MAPPED_SUBRESOURCE mapped{};
   if (FAILED(context->Map(staging, 0, MAP_READ, wait ? 0 : MAP_FLAG_DO_NOT_WAIT, &mapped))) return false;
   std::memcpy(value, mapped.pData, 4);

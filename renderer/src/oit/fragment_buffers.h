@@ -21,15 +21,15 @@ struct ViewedBuffer {
   uint64_t bytes = 0;
 
   // `words` 32-bit words, ByteAddressBuffer / RWByteAddressBuffer.
-  bool CreateRaw(rhi::Device *device, uint32_t words);
+  bool CreateRaw(rhi::Device* device, uint32_t words);
   // `count` elements of `stride` bytes; with a hidden counter
   // (IncrementCounter) when `counter`.
-  bool CreateStructured(rhi::Device *device, uint32_t count, uint32_t stride, bool counter);
+  bool CreateStructured(rhi::Device* device, uint32_t count, uint32_t stride, bool counter);
 };
 
 // The resolve draws one object's full-screen pass: true, or false with the
 // reason.
-bool AcceptsOnlyOneObject(const MethodInfo &info, const MethodSetup &setup, std::string *error);
+bool AcceptsOnlyOneObject(const MethodInfo& info, const MethodSetup& setup, std::string* error);
 
 // A 32-bit value the GPU writes each frame (a total, a counter), copied into a
 // ring of staging buffers and read back when the GPU has got there: polled with
@@ -40,17 +40,17 @@ class LateReadback {
   using Arrived = std::function<void(uint32_t value, uint64_t tag)>;
   // `arrived` receives each value, oldest first, with the tag it was issued
   // with.
-  bool Create(rhi::Device *device, Arrived arrived);
+  bool Create(rhi::Device* device, Arrived arrived);
   // Copies the value at the start of `source` for reading later.
-  void Issue(rhi::DeviceContext *context, rhi::Buffer *source, uint64_t tag);
+  void Issue(rhi::DeviceContext* context, rhi::Buffer* source, uint64_t tag);
   // Hands every copy that has arrived to `arrived`.
-  void Poll(rhi::DeviceContext *context);
+  void Poll(rhi::DeviceContext* context);
   // Reads the value at the start of `source` now: the CPU waits for the GPU.
-  uint32_t ReadNow(rhi::DeviceContext *context, rhi::Buffer *source);
+  uint32_t ReadNow(rhi::DeviceContext* context, rhi::Buffer* source);
 
  private:
   static constexpr size_t kRing = 3;
-  bool Read(rhi::DeviceContext *context, rhi::Buffer *staging, bool wait, uint32_t *value);
+  bool Read(rhi::DeviceContext* context, rhi::Buffer* staging, bool wait, uint32_t* value);
   std::array<rhi::ComPtr<rhi::Buffer>, kRing> staging_;
   rhi::ComPtr<rhi::Buffer> now_;
   std::array<uint64_t, kRing> tags_{};

@@ -21,8 +21,8 @@ constexpr uint32_t kNodeBytes = 12;  // (triangle id, depth, next)
 
 class LinkedListMethod final : public Method {
  public:
-  bool Initialize(const MethodInfo &info, const MethodSetup &setup, std::string *error) {
-    rhi::Device *device = setup.device;
+  bool Initialize(const MethodInfo& info, const MethodSetup& setup, std::string* error) {
+    rhi::Device* device = setup.device;
     width_ = setup.frame.width;
     const uint32_t pixels = setup.frame.width * setup.frame.height;
     capacity_ = pixels * setup.fragmentStorage.nodesPerPixel;
@@ -37,8 +37,8 @@ class LinkedListMethod final : public Method {
     return true;
   }
 
-  void Render(const RenderArgs &a) override {
-    rhi::DeviceContext *ctx = a.context;
+  void Render(const RenderArgs& a) override {
+    rhi::DeviceContext* ctx = a.context;
     readback_.Poll(ctx);
     a.marks->BeginPass(0);
     const UINT endOfList[4] = {0xFFFFFFFFu, 0xFFFFFFFFu, 0xFFFFFFFFu, 0xFFFFFFFFu};
@@ -46,7 +46,7 @@ class LinkedListMethod final : public Method {
     ctx->ClearUnorderedAccessViewUint(heads_.uav.Get(), endOfList);
     ctx->ClearUnorderedAccessViewUint(nodeCounter_.uav.Get(), zero);
     ctx->OMSetRenderTargets(0, nullptr, a.targets.depth);
-    a.geometry->SetEffectVariables([&](fx::Effect &e) {
+    a.geometry->SetEffectVariables([&](fx::Effect& e) {
       e.GetVariableByName("FrameWidth")->AsScalar()->SetInt(int(width_));
       e.GetVariableByName("HeadsOut")->AsUnorderedAccessView()->SetUnorderedAccessView(heads_.uav.Get());
       e.GetVariableByName("NodesOut")->AsUnorderedAccessView()->SetUnorderedAccessView(nodes_.uav.Get());
@@ -58,9 +58,9 @@ class LinkedListMethod final : public Method {
     readback_.Issue(ctx, nodeCounter_.buffer.Get(), 0);
 
     a.marks->BeginPass(1);
-    rhi::RenderTargetView *frame = a.targets.frame;
+    rhi::RenderTargetView* frame = a.targets.frame;
     ctx->OMSetRenderTargets(1, &frame, nullptr);  // unbinds the UAVs: the resolve reads them
-    a.geometry->SetEffectVariables([&](fx::Effect &e) {
+    a.geometry->SetEffectVariables([&](fx::Effect& e) {
       e.GetVariableByName("Heads")->AsShaderResource()->SetResource(heads_.srv.Get());
       e.GetVariableByName("Nodes")->AsShaderResource()->SetResource(nodes_.srv.Get());
     });
@@ -69,7 +69,7 @@ class LinkedListMethod final : public Method {
 
   // The node pool (12 bytes a node) and the heads (4 bytes a pixel).
   uint64_t MemoryBytes() const override { return nodes_.bytes + heads_.bytes; }
-  const std::vector<std::string> &PassNames() const override { return kPasses; }
+  const std::vector<std::string>& PassNames() const override { return kPasses; }
   uint64_t LostFragments() const override { return lost_; }
 
  private:
@@ -80,7 +80,7 @@ class LinkedListMethod final : public Method {
   LateReadback readback_;
 };
 
-std::unique_ptr<Method> CreateLinkedList(const MethodInfo &info, const MethodSetup &setup, std::string *error) {
+std::unique_ptr<Method> CreateLinkedList(const MethodInfo& info, const MethodSetup& setup, std::string* error) {
   if (!AcceptsOnlyOneObject(info, setup, error)) return nullptr;
   auto method = std::make_unique<LinkedListMethod>();
   if (!method->Initialize(info, setup, error)) return nullptr;

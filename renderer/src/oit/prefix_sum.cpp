@@ -35,7 +35,7 @@ constexpr uint32_t kShrinkFrames = 120;
 
 uint32_t Blocks(uint32_t n) { return (n + kScanBlock - 1) / kScanBlock; }
 
-std::vector<uint32_t> ReadWords(rhi::Device *device, rhi::DeviceContext *context, const ViewedBuffer &b) {
+std::vector<uint32_t> ReadWords(rhi::Device* device, rhi::DeviceContext* context, const ViewedBuffer& b) {
   const rhi::BUFFER_DESC desc{uint32_t(b.bytes), rhi::USAGE_STAGING, 0, rhi::CPU_ACCESS_READ, 0, 0};
   ComPtr<rhi::Buffer> staging;
   std::vector<uint32_t> words(b.bytes / 4);
@@ -50,7 +50,7 @@ std::vector<uint32_t> ReadWords(rhi::Device *device, rhi::DeviceContext *context
 
 class PrefixSumMethod final : public Method {
  public:
-  bool Initialize(const MethodInfo &info, const MethodSetup &setup, std::string *error) {
+  bool Initialize(const MethodInfo& info, const MethodSetup& setup, std::string* error) {
     device_ = setup.device;
     exact_ = setup.fragmentStorage.exactSizing;
     width_ = setup.frame.width;
@@ -69,8 +69,8 @@ class PrefixSumMethod final : public Method {
     return true;
   }
 
-  void Render(const RenderArgs &a) override {
-    rhi::DeviceContext *ctx = a.context;
+  void Render(const RenderArgs& a) override {
+    rhi::DeviceContext* ctx = a.context;
     readback_.Poll(ctx);
     size_t pass = 0;
     a.marks->BeginPass(pass++);
@@ -78,7 +78,7 @@ class PrefixSumMethod final : public Method {
     ctx->ClearUnorderedAccessViewUint(counts_.uav.Get(), zero);
     ctx->ClearUnorderedAccessViewUint(cursors_.uav.Get(), zero);
     ctx->OMSetRenderTargets(0, nullptr, a.targets.depth);
-    a.geometry->SetEffectVariables([&](fx::Effect &e) {
+    a.geometry->SetEffectVariables([&](fx::Effect& e) {
       e.GetVariableByName("FrameWidth")->AsScalar()->SetInt(int(width_));
       e.GetVariableByName("CountsOut")->AsUnorderedAccessView()->SetUnorderedAccessView(counts_.uav.Get());
     });
@@ -90,7 +90,7 @@ class PrefixSumMethod final : public Method {
 
     a.marks->BeginPass(pass++);
     ctx->OMSetRenderTargets(0, nullptr, a.targets.depth);
-    a.geometry->SetEffectVariables([&](fx::Effect &e) {
+    a.geometry->SetEffectVariables([&](fx::Effect& e) {
       e.GetVariableByName("Cursors")->AsUnorderedAccessView()->SetUnorderedAccessView(cursors_.uav.Get());
       e.GetVariableByName("FragmentsOut")->AsUnorderedAccessView()->SetUnorderedAccessView(fragments_.uav.Get());
       e.GetVariableByName("Offsets")->AsShaderResource()->SetResource(offsets_.srv.Get());
@@ -98,9 +98,9 @@ class PrefixSumMethod final : public Method {
     a.geometry->Draw(ctx, "Fill", DrawOrder::AsSubmitted);
 
     a.marks->BeginPass(pass++);
-    rhi::RenderTargetView *frame = a.targets.frame;
+    rhi::RenderTargetView* frame = a.targets.frame;
     ctx->OMSetRenderTargets(1, &frame, nullptr);  // unbinds the UAVs: the resolve reads them
-    a.geometry->SetEffectVariables([&](fx::Effect &e) {
+    a.geometry->SetEffectVariables([&](fx::Effect& e) {
       e.GetVariableByName("Counts")->AsShaderResource()->SetResource(counts_.srv.Get());
       e.GetVariableByName("Fragments")->AsShaderResource()->SetResource(fragments_.srv.Get());
     });
@@ -113,7 +113,7 @@ class PrefixSumMethod final : public Method {
     return fragments_.bytes + counts_.bytes + offsets_.bytes + cursors_.bytes + total_.bytes + scan_->MemoryBytes();
   }
 
-  PrefixSumFrame Read(rhi::DeviceContext *ctx) const {
+  PrefixSumFrame Read(rhi::DeviceContext* ctx) const {
     PrefixSumFrame f;
     f.counts = ReadWords(device_, ctx, counts_);
     f.offsets = ReadWords(device_, ctx, offsets_);
@@ -123,14 +123,14 @@ class PrefixSumMethod final : public Method {
     f.capacity = capacity_;
     return f;
   }
-  const std::vector<std::string> &PassNames() const override { return passNames_; }
+  const std::vector<std::string>& PassNames() const override { return passNames_; }
   uint64_t LostFragments() const override { return lost_; }
 
  private:
   // Exact: the frame's own total, read back now (a wait). Grown: the capacity
   // the totals read back so far asked for; the first frame, with none, is sized
   // exactly.
-  void SizeFragmentBuffer(rhi::DeviceContext *ctx) {
+  void SizeFragmentBuffer(rhi::DeviceContext* ctx) {
     uint64_t wanted = 0;
     if (exact_ || !seenTotal_) {
       const uint32_t total = readback_.ReadNow(ctx, total_.buffer.Get());
@@ -167,7 +167,7 @@ class PrefixSumMethod final : public Method {
     return capacity_;
   }
 
-  rhi::Device *device_ = nullptr;
+  rhi::Device* device_ = nullptr;
   bool exact_ = false;
   uint32_t width_ = 0, pixels_ = 0;
   ViewedBuffer counts_, cursors_, offsets_, total_, fragments_;
@@ -179,7 +179,7 @@ class PrefixSumMethod final : public Method {
   std::vector<std::string> passNames_;
 };
 
-std::unique_ptr<Method> CreatePrefixSum(const MethodInfo &info, const MethodSetup &setup, std::string *error) {
+std::unique_ptr<Method> CreatePrefixSum(const MethodInfo& info, const MethodSetup& setup, std::string* error) {
   if (!AcceptsOnlyOneObject(info, setup, error)) return nullptr;
   auto method = std::make_unique<PrefixSumMethod>();
   if (!method->Initialize(info, setup, error)) return nullptr;
@@ -198,7 +198,7 @@ struct PrefixScan::Level {
   ViewedBuffer sums, scannedSums;
 };
 
-std::unique_ptr<PrefixScan> PrefixScan::Create(rhi::Device *device, uint32_t length, std::string *error) {
+std::unique_ptr<PrefixScan> PrefixScan::Create(rhi::Device* device, uint32_t length, std::string* error) {
   std::unique_ptr<PrefixScan> scan(new PrefixScan());
   if (!scan->Initialize(device, length, error)) return nullptr;
   return scan;
@@ -206,10 +206,10 @@ std::unique_ptr<PrefixScan> PrefixScan::Create(rhi::Device *device, uint32_t len
 
 PrefixScan::~PrefixScan() = default;
 
-bool PrefixScan::Initialize(rhi::Device *device, uint32_t length, std::string *error) {
+bool PrefixScan::Initialize(rhi::Device* device, uint32_t length, std::string* error) {
   length_ = length;
   for (uint32_t n = std::max(length, 1u);; n = Blocks(n)) {
-    Level &level = levels_.emplace_back();
+    Level& level = levels_.emplace_back();
     level.length = n;
     if (!level.sums.CreateRaw(device, Blocks(n)) || !level.scannedSums.CreateRaw(device, Blocks(n))) {
       *error = "prefix scan: creating the block sums failed";
@@ -226,8 +226,8 @@ bool PrefixScan::Initialize(rhi::Device *device, uint32_t length, std::string *e
          (total_ = FindPass(effect_.Get(), nullptr, "Total", error));
 }
 
-void PrefixScan::Run(rhi::DeviceContext *ctx, rhi::UnorderedAccessView *input, rhi::UnorderedAccessView *output,
-                     rhi::UnorderedAccessView *total, PassMarks *marks, size_t *pass) {
+void PrefixScan::Run(rhi::DeviceContext* ctx, rhi::UnorderedAccessView* input, rhi::UnorderedAccessView* output,
+                     rhi::UnorderedAccessView* total, PassMarks* marks, size_t* pass) {
   ScanLevel(ctx, 0, input, output, marks, pass);
   if (marks) marks->BeginPass((*pass)++);
   Dispatch(ctx, total_, length_, input, output, nullptr, total);
@@ -237,9 +237,9 @@ void PrefixScan::Run(rhi::DeviceContext *ctx, rhi::UnorderedAccessView *input, r
 // the sums scanned (the next level) and each block's offset added back. The
 // passes run in PassNames' order: every level's ScanBlocks, then the
 // AddBlockOffsets back up.
-void PrefixScan::ScanLevel(rhi::DeviceContext *ctx, size_t level, rhi::UnorderedAccessView *input,
-                           rhi::UnorderedAccessView *output, PassMarks *marks, size_t *pass) {
-  Level &l = levels_[level];
+void PrefixScan::ScanLevel(rhi::DeviceContext* ctx, size_t level, rhi::UnorderedAccessView* input,
+                           rhi::UnorderedAccessView* output, PassMarks* marks, size_t* pass) {
+  Level& l = levels_[level];
   if (marks) marks->BeginPass((*pass)++);
   Dispatch(ctx, scanBlocks_, l.length, input, output, l.sums.uav.Get(), nullptr);
   if (level + 1 == levels_.size()) return;
@@ -248,9 +248,9 @@ void PrefixScan::ScanLevel(rhi::DeviceContext *ctx, size_t level, rhi::Unordered
   Dispatch(ctx, addBlockOffsets_, l.length, input, output, l.scannedSums.uav.Get(), nullptr);
 }
 
-void PrefixScan::Dispatch(rhi::DeviceContext *ctx, fx::EffectPass *pass, uint32_t length,
-                          rhi::UnorderedAccessView *input, rhi::UnorderedAccessView *output,
-                          rhi::UnorderedAccessView *blockSums, rhi::UnorderedAccessView *total) {
+void PrefixScan::Dispatch(rhi::DeviceContext* ctx, fx::EffectPass* pass, uint32_t length,
+                          rhi::UnorderedAccessView* input, rhi::UnorderedAccessView* output,
+                          rhi::UnorderedAccessView* blockSums, rhi::UnorderedAccessView* total) {
   const uint32_t groups = pass == total_ ? 1 : Blocks(length);
   const uint32_t groupsX = std::min(groups, kMaxGroupsPerDimension);
   effect_->GetVariableByName("ScanLength")->AsScalar()->SetInt(int(length));
@@ -261,18 +261,18 @@ void PrefixScan::Dispatch(rhi::DeviceContext *ctx, fx::EffectPass *pass, uint32_
   effect_->GetVariableByName("ScanTotal")->AsUnorderedAccessView()->SetUnorderedAccessView(total);
   pass->Apply(0, ctx);
   ctx->Dispatch(groupsX, (groups + groupsX - 1) / groupsX, 1);
-  rhi::UnorderedAccessView *none[4] = {};
+  rhi::UnorderedAccessView* none[4] = {};
   ctx->CSSetUnorderedAccessViews(0, 4, none, nullptr);  // the next pass may read them as shader resources
 }
 
 uint64_t PrefixScan::MemoryBytes() const {
   uint64_t bytes = 0;
-  for (const Level &level : levels_) bytes += level.sums.bytes + level.scannedSums.bytes;
+  for (const Level& level : levels_) bytes += level.sums.bytes + level.scannedSums.bytes;
   return bytes;
 }
 
-std::optional<PrefixSumFrame> ReadPrefixSumFrame(const Method &method, rhi::DeviceContext *context) {
-  const auto *prefixSum = dynamic_cast<const PrefixSumMethod *>(&method);
+std::optional<PrefixSumFrame> ReadPrefixSumFrame(const Method& method, rhi::DeviceContext* context) {
+  const auto* prefixSum = dynamic_cast<const PrefixSumMethod*>(&method);
   if (!prefixSum) return std::nullopt;
   return prefixSum->Read(context);
 }

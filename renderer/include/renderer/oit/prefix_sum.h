@@ -19,26 +19,26 @@ namespace renderer::oit {
 // last element).
 class PrefixScan {
  public:
-  static std::unique_ptr<PrefixScan> Create(rhi::Device *device, uint32_t length, std::string *error);
+  static std::unique_ptr<PrefixScan> Create(rhi::Device* device, uint32_t length, std::string* error);
   ~PrefixScan();
   // Scans `input` (a raw UAV of `length` words) into `output` (likewise) and
   // writes the sum of all elements into the first word of `total` (a raw UAV).
   // With `marks`, each pass begins with marks->BeginPass((*pass)++).
-  void Run(rhi::DeviceContext *context, rhi::UnorderedAccessView *input, rhi::UnorderedAccessView *output,
-           rhi::UnorderedAccessView *total, PassMarks *marks = nullptr, size_t *pass = nullptr);
+  void Run(rhi::DeviceContext* context, rhi::UnorderedAccessView* input, rhi::UnorderedAccessView* output,
+           rhi::UnorderedAccessView* total, PassMarks* marks = nullptr, size_t* pass = nullptr);
   // The passes Run applies, in order ("ScanBlocks", ..., "Total").
-  const std::vector<std::string> &PassNames() const { return passNames_; }
+  const std::vector<std::string>& PassNames() const { return passNames_; }
   // Its block sums at every level.
   uint64_t MemoryBytes() const;
 
  private:
   struct Level;
   PrefixScan() = default;
-  bool Initialize(rhi::Device *device, uint32_t length, std::string *error);
-  void ScanLevel(rhi::DeviceContext *context, size_t level, rhi::UnorderedAccessView *input,
-                 rhi::UnorderedAccessView *output, PassMarks *marks, size_t *pass);
-  void Dispatch(rhi::DeviceContext *context, fx::EffectPass *pass, uint32_t length, rhi::UnorderedAccessView *input,
-                rhi::UnorderedAccessView *output, rhi::UnorderedAccessView *blockSums, rhi::UnorderedAccessView *total);
+  bool Initialize(rhi::Device* device, uint32_t length, std::string* error);
+  void ScanLevel(rhi::DeviceContext* context, size_t level, rhi::UnorderedAccessView* input,
+                 rhi::UnorderedAccessView* output, PassMarks* marks, size_t* pass);
+  void Dispatch(rhi::DeviceContext* context, fx::EffectPass* pass, uint32_t length, rhi::UnorderedAccessView* input,
+                rhi::UnorderedAccessView* output, rhi::UnorderedAccessView* blockSums, rhi::UnorderedAccessView* total);
 
   uint32_t length_ = 0;
   std::vector<Level> levels_;
@@ -54,6 +54,6 @@ struct PrefixSumFrame {
   uint32_t total = 0;
   uint64_t capacity = 0;  // of the fragment buffer the frame filled
 };
-std::optional<PrefixSumFrame> ReadPrefixSumFrame(const Method &method, rhi::DeviceContext *context);
+std::optional<PrefixSumFrame> ReadPrefixSumFrame(const Method& method, rhi::DeviceContext* context);
 
 }  // namespace renderer::oit

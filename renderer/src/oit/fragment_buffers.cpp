@@ -89,7 +89,7 @@ uint32_t LateReadback::ReadNow(DeviceContext* context, Buffer* source) {
 
 bool LateReadback::Read(DeviceContext* context, Buffer* staging, bool wait, uint32_t* value) {
   MAPPED_SUBRESOURCE mapped{};
-  if (FAILED(context->Map(staging, 0, MAP_READ, wait ? 0 : MAP_FLAG_DO_NOT_WAIT, &mapped))) return false;
+  if (FAILED(context->Map(staging, 0, MAP_READ, wait ? 0u : UINT(MAP_FLAG_DO_NOT_WAIT), &mapped))) return false;
   std::memcpy(value, mapped.pData, 4);
   context->Unmap(staging, 0);
   return true;

@@ -240,13 +240,14 @@ int LargestDifference(const std::vector<uint8_t>& a, const std::vector<uint8_t>&
   return worst;
 }
 
-// Lavapipe (Mesa 22, llvmpipe) gives the linked lists' pixel-shader atomics on
-// one address (the pool's counter, hidden or a raw word alike) fewer increments
-// than there are fragments (39 of 8450 on 3000 shards at 64x36, the same with
-// one thread), so two fragments share a node and lists along triangle edges are
-// cut or loop. The method's code is D3D11's; its checks skip there until that
-// is understood (see the report in docs/PERF.md).
-bool AtomicCounterUnreliable(rhi::Device* device) {
+// On lavapipe (Mesa 22, llvmpipe) the linked lists come out wrong along triangle
+// edges: pixels there lose their whole list or walk into other pixels' nodes (the
+// resolve then runs into llvmpipe's 65535-turn loop cap), while the node counter is
+// exact (the test below) and prefix-sum, whose atomics add per pixel, equals the CPU
+// reference. Not explained yet: not the depth test, not the counter kind, not
+// InterlockedExchange against a compare-exchange loop, not a render target bound, not
+// an SV_Coverage guard against helper invocations. These checks skip there.
+bool LinkedListsBrokenHere(rhi::Device* device) {
   return std::string(device->GetAdapterName()).find("llvmpipe") == 0;
 }
 
@@ -268,7 +269,7 @@ TEST_P(FragmentBufferTest, PrefixSumEqualsTheCpuCompositeOfTheSameFragments) {
 }
 
 TEST_P(FragmentBufferTest, LinkedListEqualsPrefixSum) {
-  if (AtomicCounterUnreliable(device.Get())) GTEST_SKIP() << "lavapipe loses increments of one-address atomics";
+  if (LinkedListsBrokenHere(device.Get())) GTEST_SKIP() << "lavapipe breaks the linked lists along triangle edges";
   const TranslucencySettings s = Settings(GetParam().scene);
   std::vector<std::vector<uint8_t>> images;
   for (const char* name : {"prefix-sum", "linked-list"}) {
@@ -314,7 +315,6 @@ TEST_F(FragmentStorageTest, CursorsEndEqualToCountsAndOffsetsScanThem) {
 // method reports exactly how many fragments it could not store (the recorded
 // count of the frame's fragments minus the pool), a frame or two late.
 TEST_F(FragmentStorageTest, ALinkedListPoolTooSmallReportsTheFragmentsItLost) {
-  if (AtomicCounterUnreliable(device.Get())) GTEST_SKIP() << "lavapipe loses increments of one-address atomics";
   TranslucencySettings s = Settings("shards");
   s.shardCount = 3000;
   auto recording = Make(s);
@@ -325,11 +325,11 @@ TEST_F(FragmentStorageTest, ALinkedListPoolTooSmallReportsTheFragmentsItLost) {
   auto t = Make(s);
   ASSERT_TRUE(t);
   const MethodInfo& linked = *renderer::oit::FindMethod("linked-list");
-  for (int frame = 0; frame < 3; ++frame) {  // the shards do not move: every frame loses as many
-    ASSERT_TRUE(t->RenderFrame(linked)) << t->error();
-    t->ReadFrame();  // the GPU has finished the frame: the next one reads its
-                     // count without waiting
-  }
+  // Frame 0 (as recorded), read back at the start of frame 1: the camera swings, so
+  // later frames have other counts.
+  ASSERT_TRUE(t->RenderFrame(linked)) << t->error();
+  t->ReadFrame();  // the GPU has finished frame 0: frame 1 reads its count without waiting
+  ASSERT_TRUE(t->RenderFrame(linked)) << t->error();
   const uint64_t pool = uint64_t(s.width) * s.height;
   ASSERT_GT(fragments, pool);
   EXPECT_EQ(t->MethodInstance(linked)->LostFragments(), fragments - pool);

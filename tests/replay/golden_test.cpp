@@ -142,7 +142,7 @@ TEST_F(GoldenTest, EveryDemoAndMethodMatchesItsGoldenImage) {
   for (const renderer::SceneInfo* scene : renderer::Scenes()) {
     const std::vector<uint8_t> sorted = Render(*scene, *renderer::oit::FindMethod("sorted"));
     for (const MethodInfo* method : renderer::oit::Methods()) {
-      // Lavapipe loses increments of the linked lists' node counter (fragment_buffer_test.cpp):
+      // Lavapipe breaks the linked lists along triangle edges (fragment_buffer_test.cpp):
       // no golden image of that method from it.
       if (std::string(method->name) == "linked-list" && std::string(device->GetAdapterName()).find("llvmpipe") == 0)
         continue;

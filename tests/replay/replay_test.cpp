@@ -153,8 +153,8 @@ TEST_F(ReplayTest, ParticleCountAfterNFramesEqualsTheCpuModel) {
 TEST_F(ReplayTest, TheSameFrameRenderedTwiceIsBitIdentical) {
   for (const char* scene : {"smoke", "shards", "teapot", "complexity"})
     for (const MethodInfo* method : renderer::oit::Methods()) {
-      // Lavapipe loses increments of the linked lists' node counter, not always the
-      // same ones (fragment_buffer_test.cpp): that method's frames differ there.
+      // Lavapipe breaks the linked lists along triangle edges, not always alike
+      // (fragment_buffer_test.cpp): that method's frames differ there.
       if (std::string(method->name) == "linked-list" && std::string(device->GetAdapterName()).find("llvmpipe") == 0)
         continue;
       const TranslucencySettings s = Small(scene);

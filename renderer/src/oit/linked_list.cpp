@@ -5,8 +5,8 @@
 // prefix-sum's sorts, shades (deferred) and composites. Fragments past the pool
 // are dropped and counted: the pool's node counter (an atomic word) goes on
 // counting past the capacity, and its value comes back a frame or two late
-// (LateReadback) as LostFragments. On lavapipe that counter loses increments
-// (tests/replay/fragment_buffer_test.cpp).
+// (LateReadback) as LostFragments. On lavapipe the lists come out wrong along
+// triangle edges (tests/replay/fragment_buffer_test.cpp).
 #include "fx/effect.h"
 #include "oit/fragment_buffers.h"
 #include "renderer/effect_files.h"

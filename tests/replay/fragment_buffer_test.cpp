@@ -246,7 +246,8 @@ int LargestDifference(const std::vector<uint8_t>& a, const std::vector<uint8_t>&
 // exact (the test below) and prefix-sum, whose atomics add per pixel, equals the CPU
 // reference. Not explained yet: not the depth test, not the counter kind, not
 // InterlockedExchange against a compare-exchange loop, not a render target bound, not
-// an SV_Coverage guard against helper invocations. These checks skip there.
+// an SV_Coverage guard against helper invocations, not 16-byte nodes, not llvmpipe's
+// vector width. These checks skip there.
 bool LinkedListsBrokenHere(rhi::Device* device) {
   return std::string(device->GetAdapterName()).find("llvmpipe") == 0;
 }

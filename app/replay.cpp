@@ -3,15 +3,22 @@
 //   replay --list-methods | --list-scenes
 //       one line per registered transparency method (name, what it needs of the device,
 //       summary) or scene: the registries renderer/oit and renderer/scenes.h.
-//   replay --demo SCENE --method METHOD [--frames N] [--size WxH] --out DIR
+//   replay --demo SCENE --method METHOD [--frames N] [--size WxH] [--peel-layers N] [--layer K] --out DIR
 //       renders frames 0..N-1 (fixed time step, seeded, camera a function of the frame index)
 //       and writes DIR/<scene>_<method>_<frame>.png for the last frame (--all-frames: every frame).
+//       --peel-layers: the layers the peeling methods keep (default 8); --layer K: a method
+//       that keeps layers (depth-peeling) shows layer K alone, over neutral grey, in
+//       DIR/<scene>_<method>_layer<K>_<frame>.png.
 //       fire: flames drawn with additive blending for alpha and sorted (order-independent).
 //   replay --figures --out DIR [--size WxH] [--frames N]
 //       fig1_smoke_alpha_wboit.png (alpha | WBOIT), fig_shards_wboit_colored_sorted.png
 //       (WBOIT | colored | sorted), fig_fire_additive_wboit_colored.png,
-//       fig3_teapot_alpha_sorted_wboit.png (document 002's teapot: alpha | sorted | WBOIT)
-//       and every method's RMSE / PSNR against the sorted reference
+//       fig3_teapot_alpha_sorted_wboit.png (document 002's teapot: alpha | sorted | WBOIT),
+//       document 002's figures with depth peeling on its teapot (shards where there is no
+//       teapot scene): fig3_<scene>_depth_peeling_layers_0-3.png (Fig. 3: layers 0-3, each
+//       alone over neutral grey) and fig6_<scene>_depth_peeling_1_2_4_8_exact.png (Fig. 6:
+//       1, 2, 4 and 8 layers and the exact composite, every layer peeled), every
+//       method's RMSE / PSNR against the sorted reference, and Fig. 6's against the exact one
 //   replay --bench [--scene demo|paper|heavy] [--frames N] [--warmup N] [--size WxH]
 //       per registered method: FPS and frame ms from the GPU (TIMESTAMP queries inside a
 //       TIMESTAMP_DISJOINT query, median over N frames), per-pass GPU ms, CPU ms per frame
@@ -57,6 +64,8 @@ struct Options {
   bool figures = false, bench = false, allFrames = false, listMethods = false, listScenes = false;
   std::string scene = "demo";  // --bench: demo | paper | heavy
   int warmup = -1;
+  uint32_t peelLayers = renderer::oit::kDefaultPeelLayers;
+  int layer = -1;  // --layer: the layer shown alone
 };
 
 std::unique_ptr<renderer::Translucency> Make(rhi::Device* device, rhi::DeviceContext* ctx,
@@ -109,6 +118,8 @@ int RunOne(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
   renderer::TranslucencySettings s;
   s.scene = o.demo;
   s.width = o.width, s.height = o.height;
+  s.peelLayers = o.peelLayers;
+  s.showLayer = o.layer;
   const int frames = Frames(o, o.demo);
   auto t = Make(device, ctx, s);
   std::filesystem::create_directories(o.out);
@@ -116,7 +127,8 @@ int RunOne(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
     Render(*t, *o.method);
     if (o.allFrames || i == frames - 1) {
       char name[256];
-      std::snprintf(name, sizeof name, "%s_%s_%04d.png", o.demo.c_str(), o.method->name, i);
+      const std::string layer = o.layer < 0 ? "" : "_layer" + std::to_string(o.layer);
+      std::snprintf(name, sizeof name, "%s_%s%s_%04d.png", o.demo.c_str(), o.method->name, layer.c_str(), i);
       WritePng((std::filesystem::path(o.out) / name).string(), t->ReadFrame(), o.width, o.height);
     }
   }
@@ -133,6 +145,52 @@ int ListScenes() {
   for (const renderer::SceneInfo* s : renderer::Scenes())
     std::printf("%-10s %4d frames  %s\n", s->name, s->defaultFrames, s->summary);
   return 0;
+}
+
+// Document 002's figures with depth peeling, on its teapot where that scene exists
+// (another branch adds it), else on the shards.
+//   Fig. 3: layers 0-3, each alone over neutral grey.
+//   Fig. 6: 1, 2, 4 and 8 layers against the exact composite: kExactLayers layers, exact
+//           when the last of them is empty (the figure says so when it is not).
+void WritePeelingFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
+  constexpr uint32_t kExactLayers = 32;
+  const std::string scene = renderer::FindScene("teapot") ? "teapot" : "shards";
+  const MethodInfo& peeling = Method("depth-peeling");
+  renderer::TranslucencySettings s;
+  s.scene = scene;
+  s.width = o.width, s.height = o.height;
+  const int frames = Frames(o, scene);
+  const std::filesystem::path out(o.out);
+  uint32_t w = 0;
+
+  std::vector<std::vector<uint8_t>> layers;
+  for (int k = 0; k < 4; ++k) {
+    s.showLayer = k;
+    layers.push_back(Replay(device, ctx, s, peeling, frames));
+  }
+  s.showLayer = -1;
+  auto fig3 = SideBySide(layers, o.width, o.height, &w);
+  WritePng((out / ("fig3_" + scene + "_depth_peeling_layers_0-3.png")).string(), fig3, w, o.height);
+
+  s.peelLayers = kExactLayers;
+  auto exact = Make(device, ctx, s);
+  for (int i = 0; i < frames; ++i) Render(*exact, peeling);
+  const std::vector<uint8_t> exactImage = exact->ReadFrame();
+  const std::vector<uint64_t> samples = exact->MethodInstance(peeling)->LayerSamples(ctx);
+  if (samples.empty() || samples.back() != 0)
+    std::printf("%s: layer %u is not empty: the exact panel misses what lies behind it\n", scene.c_str(),
+                kExactLayers - 1);
+  std::vector<std::vector<uint8_t>> panels;
+  for (uint32_t n : {1u, 2u, 4u, 8u}) {
+    s.peelLayers = n;
+    panels.push_back(Replay(device, ctx, s, peeling, frames));
+    const double rmse = renderer::Rmse(panels.back(), exactImage);
+    std::printf("%-10s %-16s %10.3f %10.2f  (%u layers against the exact composite)\n", scene.c_str(), peeling.name,
+                rmse, renderer::Psnr(rmse), n);
+  }
+  panels.push_back(exactImage);
+  auto fig6 = SideBySide(panels, o.width, o.height, &w);
+  WritePng((out / ("fig6_" + scene + "_depth_peeling_1_2_4_8_exact.png")).string(), fig6, w, o.height);
 }
 
 int RunFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
@@ -170,6 +228,7 @@ int RunFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
       WritePng((std::filesystem::path(o.out) / f.file).string(), fig, w, o.height);
     }
   }
+  WritePeelingFigures(device, ctx, o);
   return 0;
 }
 
@@ -335,9 +394,15 @@ int main(int argc, char** argv) {
       o.warmup = std::atoi(next().c_str());
     } else if (a == "--all-frames") {
       o.allFrames = true;
+    } else if (a == "--peel-layers") {
+      o.peelLayers = uint32_t(std::atoi(next().c_str()));
+    } else if (a == "--layer") {
+      o.layer = std::atoi(next().c_str());
+      if (o.layer < 0) Fail("--layer takes a layer number, 0 the nearest");
     } else {
       Fail("unknown argument " + a +
-           "\nusage: replay --demo SCENE --method METHOD [--frames N] [--size WxH] --out DIR"
+           "\nusage: replay --demo SCENE --method METHOD [--frames N] [--size WxH] [--peel-layers N] [--layer K]"
+           " --out DIR"
            "\n       replay --list-methods | --list-scenes"
            "\n       replay --figures --out DIR\n       replay --bench [--scene demo|paper|heavy] [--frames N] [--warmup N]"
            "\n  scenes: " + renderer::SceneNames() + "\n  methods: " + renderer::oit::MethodNames());

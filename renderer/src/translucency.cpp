@@ -70,13 +70,20 @@ class Translucency::FrameGeometry final : public oit::Geometry {
   void Draw(DeviceContext* context, const char* pass, oit::DrawOrder order) override {
     for (auto& object : impl_.objects) {
       std::string why;
-      if (!object->Draw(context, method_, camera_, pass, order, &why) && error.empty())
-        error = std::string(object->Name()) + " with " + method_.name + ": " + why;
+      if (!object->Draw(context, method_, camera_, pass, order, &why)) Fail(*object, why);
     }
+  }
+  void SetShaderResource(const char* name, ShaderResourceView* view) override {
+    for (auto& object : impl_.objects)
+      if (FAILED(object->MethodEffect(method_)->GetVariableByName(name)->AsShaderResource()->SetResource(view)))
+        Fail(*object, std::string("no shader-resource variable ") + name);
   }
   std::string error;
 
  private:
+  void Fail(const TranslucentObject& object, const std::string& why) {
+    if (error.empty()) error = std::string(object.Name()) + " with " + method_.name + ": " + why;
+  }
   Impl& impl_;
   const oit::MethodInfo& method_;
   const Camera& camera_;
@@ -188,8 +195,10 @@ Translucency::MethodState* Translucency::Prepare(const oit::MethodInfo& info) {
   if (auto found = m.methods.find(info.name); found != m.methods.end()) return &found->second;
   MethodState state;
   std::string why;
-  state.method = info.create(info, {m.device, {settings_.width, settings_.height, 1}}, &why);
+  state.method = info.create(info, {m.device, {settings_.width, settings_.height, 1}, settings_.peelLayers}, &why);
   if (!state.method) return error_ = std::string(info.name) + ": " + why, nullptr;
+  if (settings_.showLayer >= 0 && !state.method->ShowLayer(uint32_t(settings_.showLayer)))
+    return error_ = std::string(info.name) + " keeps no layer " + std::to_string(settings_.showLayer), nullptr;
   for (auto& object : m.objects)
     if (!object->PrepareMethod(info, &why))
       return error_ = std::string(object->Name()) + " with " + info.name + ": " + why, nullptr;

@@ -12,6 +12,10 @@
 #include "renderer/particle_system.h"
 #include "rhi/rhi.h"
 
+namespace fx {
+class Effect;
+}
+
 namespace renderer {
 
 class TranslucentObject {
@@ -21,6 +25,8 @@ class TranslucentObject {
   virtual const char* Name() const = 0;
   // Builds the object's effect for `method`; once per method, before its first Draw.
   virtual bool PrepareMethod(const oit::MethodInfo& method, std::string* error) = 0;
+  // That effect (after PrepareMethod), for the variables a method sets in it.
+  virtual fx::Effect* MethodEffect(const oit::MethodInfo& method) = 0;
   // The object's passes that precede every transparency pass (the particle update
   // pass); with countLive, LiveCount() then gives what it left alive.
   virtual void Update(rhi::DeviceContext* /*context*/, bool /*countLive*/) {}

@@ -55,6 +55,8 @@ class Meshes final : public TranslucentObject {
 
   const char* Name() const override { return "meshes.fx"; }
 
+  fx::Effect* MethodEffect(const oit::MethodInfo& method) override { return effects_.at(method.name).effect.Get(); }
+
   bool PrepareMethod(const oit::MethodInfo& method, std::string* error) override {
     if (effects_.count(method.name)) return true;
     MeshEffect e;

@@ -9,7 +9,9 @@ namespace renderer::oit {
   X(kSorted)                    \
   X(kWboit)                     \
   X(kColored)                   \
-  X(kColoredLiteral)
+  X(kColoredLiteral)            \
+  X(kDepthPeeling)              \
+  X(kDualDepthPeeling)
 
 #define RENDERER_OIT_DECLARE(info) extern const MethodInfo info;
 RENDERER_OIT_METHODS(RENDERER_OIT_DECLARE)

@@ -52,6 +52,10 @@ enum class DrawOrder {
 class Geometry {
  public:
   virtual void Draw(rhi::DeviceContext* context, const char* pass, DrawOrder order) = 0;
+  // Sets the shader-resource variable `name` of every object's effect for this
+  // method: a texture the method made that its object passes read (depth peeling's
+  // previous layer). Later Draws bind it.
+  virtual void SetShaderResource(const char* name, rhi::ShaderResourceView* view) = 0;
 
  protected:
   ~Geometry() = default;
@@ -83,14 +87,26 @@ class Method {
   virtual uint64_t MemoryBytes() const = 0;
   // Its passes in the order Render runs them (the names of their effect passes).
   virtual const std::vector<std::string>& PassNames() const = 0;
+
+  // Methods that keep the translucent fragments as depth layers (depth peeling).
+  // From the next Render on, the frame shows layer `layer` (0: the nearest) alone
+  // instead of the composite; false when the method keeps no such layer.
+  virtual bool ShowLayer(uint32_t /*layer*/) { return false; }
+  // The samples each layer of the last Render holds (an occlusion query per
+  // layer), waiting for the GPU; empty when the method keeps no layers.
+  virtual std::vector<uint64_t> LayerSamples(rhi::DeviceContext* /*context*/) const { return {}; }
 };
 
 struct MethodInfo;
+
+// The layers the peeling methods keep unless told otherwise.
+inline constexpr uint32_t kDefaultPeelLayers = 8;
 
 // What a method is created with.
 struct MethodSetup {
   rhi::Device* device = nullptr;
   FrameDesc frame;
+  uint32_t peelLayers = kDefaultPeelLayers;  // the peeling methods: at most this many depth layers
 };
 
 using MethodFactory = std::unique_ptr<Method> (*)(const MethodInfo& info, const MethodSetup& setup,

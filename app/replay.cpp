@@ -137,7 +137,7 @@ int RunOne(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
 
 int ListMethods() {
   for (const MethodInfo* m : renderer::oit::Methods())
-    std::printf("%-16s needs: %-24s %s\n", m->name, renderer::oit::DescribeNeeds(m->needs).c_str(), m->summary);
+    std::printf("%-18s needs: %-24s %s\n", m->name, renderer::oit::DescribeNeeds(m->needs).c_str(), m->summary);
   return 0;
 }
 
@@ -185,7 +185,7 @@ void WritePeelingFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Opt
     s.peelLayers = n;
     panels.push_back(Replay(device, ctx, s, peeling, frames));
     const double rmse = renderer::Rmse(panels.back(), exactImage);
-    std::printf("%-10s %-16s %10.3f %10.2f  (%u layers against the exact composite)\n", scene.c_str(), peeling.name,
+    std::printf("%-10s %-18s %10.3f %10.2f  (%u layers against the exact composite)\n", scene.c_str(), peeling.name,
                 rmse, renderer::Psnr(rmse), n);
   }
   panels.push_back(exactImage);
@@ -195,7 +195,7 @@ void WritePeelingFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Opt
 
 int RunFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
   std::filesystem::create_directories(o.out);
-  std::printf("%-10s %-16s %10s %10s\n", "demo", "method", "RMSE", "PSNR dB");
+  std::printf("%-10s %-18s %10s %10s\n", "demo", "method", "RMSE", "PSNR dB");
   // Every scene with every method, measured against the sorted reference; the
   // figures are the source document's, each of named methods.
   struct Figure {
@@ -217,7 +217,7 @@ int RunFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
     for (const MethodInfo* m : renderer::oit::Methods()) images[m->name] = Replay(device, ctx, s, *m, frames);
     for (const MethodInfo* m : renderer::oit::Methods()) {
       double rmse = renderer::Rmse(images[m->name], images["sorted"]);
-      std::printf("%-10s %-16s %10.3f %10.2f\n", scene->name, m->name, rmse, renderer::Psnr(rmse));
+      std::printf("%-10s %-18s %10.3f %10.2f\n", scene->name, m->name, rmse, renderer::Psnr(rmse));
     }
     for (const Figure& f : figures) {
       if (std::string(f.scene) != scene->name) continue;
@@ -309,7 +309,7 @@ int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
     const int warmup = o.warmup >= 0 ? o.warmup : particles ? int(base.rule.minLife + base.rule.lifeRange) : 2;
     std::printf("\n%s: %ux%u, %s%s, %d warm-up frames, the methods' frames interleaved\n", bc.name.c_str(),
                 base.width, base.height, base.scene.c_str(), base.extraShards ? " + shards" : "", warmup);
-    std::printf("%-16s %9s %9s %9s %9s %9s %9s %9s %9s %9s %10s %9s %9s %10s\n", "method", "FPS(GPU)", "GPU ms",
+    std::printf("%-18s %9s %9s %9s %9s %9s %9s %9s %9s %9s %10s %9s %9s %10s\n", "method", "FPS(GPU)", "GPU ms",
                 "opaque", "update", "3D pass", "later", "CPU ms", "wall ms", "particles", "shards", "3D Mfrag",
                 "Gfrag/s", "MiB");
     // One replay per method, each warmed up; then frame i of every method in turn, so that
@@ -341,7 +341,7 @@ int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
       }
       // The 3D pass's fill rate: fragments shaded (and blended) per second.
       const double pass3dMs = Median(m.firstPass), fragmentCount = Median(m.fragments);
-      std::printf("%-16s %9.1f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9llu %10u %9.2f %9.2f %10.2f\n", name,
+      std::printf("%-18s %9.1f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9llu %10u %9.2f %9.2f %10.2f\n", name,
                   gpuMs[name] > 0 ? 1000.0 / gpuMs[name] : 0.0, gpuMs[name], Median(m.opaque), Median(m.update),
                   pass3dMs, Median(m.laterPasses), cpuMs[name], Median(m.wall), static_cast<unsigned long long>(live),
                   base.scene == "shards" ? base.shardCount : base.extraShards, fragmentCount / 1e6,

@@ -8,6 +8,13 @@
 // farthest of each pixel, all of them where it has at most N. The depth ranges
 // and the front accumulations ping-pong between two targets each (a pass reads one,
 // writes the other); the back layer is read right after its pass.
+//
+// Coloured transmission (TransmissionFactor per channel) holds throughout: the front
+// keeps 1 - T per channel in a target of its own, and the back layers go over the
+// frame with dual-source blending (frame = a c + T * frame, T in SV_Target1), where
+// B&M's SRC_ALPHA / INV_SRC_ALPHA has one transmission for all channels. The front
+// sums in float and meets the RGBA8 frame once, so where a partial composite passes 1
+// the frame clamps it at other places than depth peeling's layer-by-layer composite.
 #include <string>
 
 #include "oit/peeling_targets.h"
@@ -128,7 +135,8 @@ std::unique_ptr<Method> CreateDualDepthPeeling(const MethodInfo& info, const Met
 
 extern const MethodInfo kDualDepthPeeling{
     "dual-depth-peeling", "oit/dual_depth_peeling.fxh", kNeedsFloat32Blend, DrawOrder::AsSubmitted,
-    "dual depth peeling: N layers, 2 a pass, the N/2 nearest and farthest (Bavoil & Myers 2008)",
+    "dual depth peeling: the N/2 nearest and farthest layers, 2 a pass, coloured transmission through "
+    "dual-source blending (Bavoil & Myers 2008)",
     CreateDualDepthPeeling};
 
 }  // namespace renderer::oit

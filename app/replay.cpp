@@ -19,13 +19,16 @@
 //       alone over neutral grey) and fig6_<scene>_depth_peeling_1_2_4_8_exact.png (Fig. 6:
 //       1, 2, 4 and 8 layers and the exact composite, every layer peeled), every
 //       method's RMSE / PSNR against the sorted reference, and Fig. 6's against the exact one
-//   replay --bench [--scene demo|paper|heavy] [--frames N] [--warmup N] [--size WxH]
+//   replay --bench [--scene demo|paper|heavy|complexity] [--frames N] [--warmup N] [--size WxH]
 //       per registered method: FPS and frame ms from the GPU (TIMESTAMP queries inside a
 //       TIMESTAMP_DISJOINT query, median over N frames), per-pass GPU ms, CPU ms per frame
 //       (RenderFrame's recording and submission, median), wall ms; WBOIT/alpha ratio.
 //       demo:  the smoke and shards demos at --size (default 640x360);
 //       paper: 1280x720, smoke of a few thousand particles over the opaque scene (Fig. 2);
-//       heavy: 1920x1080, 1M particles plus 10k instanced shards in one frame.
+//       heavy: 1920x1080, 1M particles plus 10k instanced shards in one frame;
+//       complexity: the complexity scene at depth complexity 1, 4, 16, 32, 64 at --size.
+//       A method that refuses a scene is skipped with its reason; a method of more than two
+//       passes also gets a line of its passes' GPU ms by name.
 //       --warmup defaults to the updates the smoke needs to reach its steady state.
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb_image_write.h>
@@ -260,6 +263,15 @@ std::vector<BenchCase> BenchCases(const Options& o) {
     s.particleSize = 0.05f;
     s.extraShards = 10000;
     cases.push_back({"heavy", s});
+  } else if (o.scene == "complexity") {
+    // Document 004's sweep: the same quads at depth complexity 1 to 64, at --size.
+    for (uint32_t complexity : {1u, 4u, 16u, 32u, 64u}) {
+      renderer::TranslucencySettings s;
+      s.scene = "complexity";
+      s.width = o.width, s.height = o.height;
+      s.depthComplexity = complexity;
+      cases.push_back({"complexity " + std::to_string(complexity), s});
+    }
   } else {
     for (const char* scene : {"smoke", "shards"}) {
       renderer::TranslucencySettings s;
@@ -274,6 +286,7 @@ std::vector<BenchCase> BenchCases(const Options& o) {
 // The timed samples of one method (medians are taken at the end).
 struct MethodSamples {
   std::vector<double> wall, cpu, opaque, update, firstPass, laterPasses, gpu, fragments;
+  std::vector<std::vector<double>> passes;  // [pass][frame]
 };
 
 // Renders and times one frame of `t`; the GPU times only when its timestamps came back.
@@ -290,23 +303,80 @@ void TimeFrame(renderer::Translucency& t, const MethodInfo& method, MethodSample
   double later = 0;
   for (size_t i = 1; i < times.methodPassMs.size(); ++i) later += times.methodPassMs[i];
   samples.firstPass.push_back(times.methodPassMs.at(0)), samples.laterPasses.push_back(later);
+  samples.passes.resize(times.methodPassMs.size());
+  for (size_t i = 0; i < times.methodPassMs.size(); ++i) samples.passes[i].push_back(times.methodPassMs[i]);
   samples.gpu.push_back(times.totalMs), samples.fragments.push_back(double(times.firstPassFragments));
 }
 
+// A replay of one method warmed up for the bench, or null (and `why`) when the
+// method refuses the scene.
+struct BenchReplay {
+  const MethodInfo* method;
+  std::unique_ptr<renderer::Translucency> replay;
+  MethodSamples samples;
+};
+
+std::vector<BenchReplay> WarmedUpReplays(rhi::Device* device, rhi::DeviceContext* ctx,
+                                         const renderer::TranslucencySettings& settings, int warmup) {
+  std::vector<BenchReplay> replays;
+  for (const MethodInfo* method : renderer::oit::Methods()) {
+    auto t = Make(device, ctx, settings);
+    bool made = true;
+    for (int i = 0; i < warmup && made; ++i) {
+      made = t->RenderFrame(*method);
+      t->LastTimes();
+    }
+    if (!made) {
+      std::printf("%-18s skipped: %s\n", method->name, t->error().c_str());
+      continue;
+    }
+    replays.push_back({method, std::move(t), {}});
+  }
+  return replays;
+}
+
+void PrintBenchRow(BenchReplay& r, const renderer::TranslucencySettings& base, bool particles) {
+  renderer::Translucency& t = *r.replay;
+  const MethodSamples& m = r.samples;
+  const double gpuMs = Median(m.gpu);
+  const renderer::oit::Method* method = t.MethodInstance(*r.method);
+  const double mib = double(method->MemoryBytes()) / (1024.0 * 1024.0);
+  // The live count of the last frame (an extra SO_STATISTICS frame, not timed).
+  uint64_t live = 0;
+  if (particles) {
+    Render(t, Method("sorted"));  // a back-to-front method always counts
+    live = t.particleCount();
+    t.LastTimes();
+  }
+  // The 3D pass's fill rate: fragments shaded (and blended) per second.
+  const double pass3dMs = Median(m.firstPass), fragmentCount = Median(m.fragments);
+  std::printf("%-18s %9.1f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9llu %10u %9.2f %9.2f %10.2f\n", r.method->name,
+              gpuMs > 0 ? 1000.0 / gpuMs : 0.0, gpuMs, Median(m.opaque), Median(m.update), pass3dMs,
+              Median(m.laterPasses), Median(m.cpu), Median(m.wall), static_cast<unsigned long long>(live),
+              base.scene == "shards" ? base.shardCount : base.extraShards, fragmentCount / 1e6,
+              pass3dMs > 0 ? fragmentCount / (pass3dMs * 1e6) : 0.0, mib);
+  if (method->PassNames().size() > 2) {  // the passes of a many-pass method, by name
+    std::printf("%16s", "");
+    for (size_t i = 0; i < m.passes.size(); ++i)
+      std::printf(" %s %.3f", method->PassNames()[i].c_str(), Median(m.passes[i]));
+    std::printf("\n");
+  }
+}
+
 int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
-  if (o.scene != "demo" && o.scene != "paper" && o.scene != "heavy") Fail("--scene takes demo, paper or heavy");
+  if (o.scene != "demo" && o.scene != "paper" && o.scene != "heavy" && o.scene != "complexity")
+    Fail("--scene takes demo, paper, heavy or complexity");
   const int frames = o.frames > 0 ? o.frames : 60;
   std::printf("replay --bench --scene %s on %s, %d timed frames (medians)\n", o.scene.c_str(),
               device->GetAdapterName(), frames);
-  const std::vector<const MethodInfo*>& methods = renderer::oit::Methods();
-  const size_t n = methods.size();
   for (const BenchCase& bc : BenchCases(o)) {
     renderer::TranslucencySettings base = bc.settings;
     base.timestamps = true;
     base.countParticles = false;
-    const bool particles = base.scene != "shards";
+    const bool particles = base.scene == "smoke" || base.scene == "fire";
     // Warm-up: the updates the smoke needs to reach its steady state (the longest life).
-    const int warmup = o.warmup >= 0 ? o.warmup : particles ? int(base.rule.minLife + base.rule.lifeRange) : 2;
+    const int warmup = o.warmup >= 0 ? std::max(1, o.warmup)
+                                     : particles ? int(base.rule.minLife + base.rule.lifeRange) : 2;
     std::printf("\n%s: %ux%u, %s%s, %d warm-up frames, the methods' frames interleaved\n", bc.name.c_str(),
                 base.width, base.height, base.scene.c_str(), base.extraShards ? " + shards" : "", warmup);
     std::printf("%-18s %9s %9s %9s %9s %9s %9s %9s %9s %9s %10s %9s %9s %10s\n", "method", "FPS(GPU)", "GPU ms",
@@ -314,38 +384,13 @@ int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
                 "Gfrag/s", "MiB");
     // One replay per method, each warmed up; then frame i of every method in turn, so that
     // all methods see the same load on a shared machine (lavapipe's cores) over the run.
-    std::vector<std::unique_ptr<renderer::Translucency>> replays(n);
-    for (size_t mi = 0; mi < n; ++mi) {
-      replays[mi] = Make(device, ctx, base);
-      for (int i = 0; i < warmup; ++i) {
-        Render(*replays[mi], *methods[mi]);
-        replays[mi]->LastTimes();
-      }
-    }
-    std::vector<MethodSamples> samples(n);
+    std::vector<BenchReplay> replays = WarmedUpReplays(device, ctx, base, warmup);
     for (int i = 0; i < frames; ++i)
-      for (size_t mi = 0; mi < n; ++mi) TimeFrame(*replays[mi], *methods[mi], samples[mi]);
+      for (BenchReplay& r : replays) TimeFrame(*r.replay, *r.method, r.samples);
     std::map<std::string, double> gpuMs, cpuMs;
-    for (size_t mi = 0; mi < n; ++mi) {
-      renderer::Translucency& t = *replays[mi];
-      const MethodSamples& m = samples[mi];
-      const char* name = methods[mi]->name;
-      gpuMs[name] = Median(m.gpu), cpuMs[name] = Median(m.cpu);
-      const double mib = double(t.MethodInstance(*methods[mi])->MemoryBytes()) / (1024.0 * 1024.0);
-      // The live count of the last frame (an extra SO_STATISTICS frame, not timed).
-      uint64_t live = 0;
-      if (particles) {
-        Render(t, Method("sorted"));  // a back-to-front method always counts
-        live = t.particleCount();
-        t.LastTimes();
-      }
-      // The 3D pass's fill rate: fragments shaded (and blended) per second.
-      const double pass3dMs = Median(m.firstPass), fragmentCount = Median(m.fragments);
-      std::printf("%-18s %9.1f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9llu %10u %9.2f %9.2f %10.2f\n", name,
-                  gpuMs[name] > 0 ? 1000.0 / gpuMs[name] : 0.0, gpuMs[name], Median(m.opaque), Median(m.update),
-                  pass3dMs, Median(m.laterPasses), cpuMs[name], Median(m.wall), static_cast<unsigned long long>(live),
-                  base.scene == "shards" ? base.shardCount : base.extraShards, fragmentCount / 1e6,
-                  pass3dMs > 0 ? fragmentCount / (pass3dMs * 1e6) : 0.0, mib);
+    for (BenchReplay& r : replays) {
+      gpuMs[r.method->name] = Median(r.samples.gpu), cpuMs[r.method->name] = Median(r.samples.cpu);
+      PrintBenchRow(r, base, particles);
     }
     std::printf("%s: WBOIT/alpha GPU frame-time ratio %.3f (target <= 1.27; paper, smoke on D3D11: "
                 "1.183/0.935 = 1.265); CPU ms per frame: alpha %.3f, WBOIT %.3f\n",
@@ -404,7 +449,7 @@ int main(int argc, char** argv) {
            "\nusage: replay --demo SCENE --method METHOD [--frames N] [--size WxH] [--peel-layers N] [--layer K]"
            " --out DIR"
            "\n       replay --list-methods | --list-scenes"
-           "\n       replay --figures --out DIR\n       replay --bench [--scene demo|paper|heavy] [--frames N] [--warmup N]"
+           "\n       replay --figures --out DIR\n       replay --bench [--scene demo|paper|heavy|complexity] [--frames N] [--warmup N]"
            "\n  scenes: " + renderer::SceneNames() + "\n  methods: " + renderer::oit::MethodNames());
     }
   }

@@ -231,6 +231,9 @@ bool Translucency::RenderFrame(const oit::MethodInfo& method) {
   MethodState* state = Prepare(method);
   if (!state) return false;
   DeviceContext* ctx = m.context;
+  // Every frame starts from D3D11's default state, so that no binding of the last
+  // frame (the composing pass's shader resources, say) meets this frame's outputs.
+  ctx->ClearState();
   camera_ = cameraOverride_ ? *cameraOverride_ : CameraForFrame(frame_);
   // A back-to-front method sorts what the updates left alive: count it.
   const bool count = settings_.countParticles || method.order == oit::DrawOrder::BackToFront;

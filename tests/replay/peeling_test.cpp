@@ -1,13 +1,14 @@
 // Depth peeling and dual depth peeling (document 002; renderer/src/oit/depth_peeling.cpp,
 // dual_depth_peeling.cpp) against computations that do not use them:
-//  - no fragment is lost or peeled twice: the samples of all layers (an occlusion
-//    query per layer) add up to what one plain pass, depth-tested against the opaque
+//  - no fragment is lost or peeled twice: the pixels of all layers (an occlusion
+//    query around each layer's composite pass, which discards the pixels the layer
+//    does not hold) add up to what one plain pass, depth-tested against the opaque
 //    depth as every layer is, counts (an occlusion query around `alpha`'s pass), on
 //    scenes of known depth complexity (the complexity stack: exactly its quad count
-//    at the centre) and on the teapot and the shards. Not on the smoke: the children
-//    an emitter spawns in one update start at its centre, so their billboards
-//    coincide, and depth peeling keeps fragments of one depth as one layer
-//    (document 002 peels depth layers; 35 of 2752 fragments at this test's settings);
+//    at the centre) and on the teapot and the shards. Not on the smoke: its
+//    billboards' corners have opacity 0 and take no layer, and the children an
+//    emitter spawns in one update start at its centre, so that their billboards
+//    coincide and share a layer (document 002 peels depth layers, not fragments);
 //  - with enough layers depth peeling equals `sorted` where `sorted` is exact: the
 //    complexity scene, whose quads are parallel, face the eye and lie at distinct
 //    depths, so that sorting them by object is sorting every pixel's fragments (the

@@ -3,15 +3,22 @@
 //   replay --list-methods | --list-scenes
 //       one line per registered transparency method (name, what it needs of the device,
 //       summary) or scene: the registries renderer/oit and renderer/scenes.h.
-//   replay --demo SCENE --method METHOD [--frames N] [--size WxH] --out DIR
+//   replay --demo SCENE --method METHOD [--frames N] [--size WxH] [--peel-layers N] [--layer K] --out DIR
 //       renders frames 0..N-1 (fixed time step, seeded, camera a function of the frame index)
 //       and writes DIR/<scene>_<method>_<frame>.png for the last frame (--all-frames: every frame).
+//       --peel-layers: the layers the peeling methods keep (default 8); --layer K: a method
+//       that keeps layers (depth-peeling) shows layer K alone, over neutral grey, in
+//       DIR/<scene>_<method>_layer<K>_<frame>.png.
 //       fire: flames drawn with additive blending for alpha and sorted (order-independent).
 //   replay --figures --out DIR [--size WxH] [--frames N]
 //       fig1_smoke_alpha_wboit.png (alpha | WBOIT), fig_shards_wboit_colored_sorted.png
 //       (WBOIT | colored | sorted), fig_fire_additive_wboit_colored.png,
-//       fig3_teapot_alpha_sorted_wboit.png (document 002's teapot: alpha | sorted | WBOIT)
-//       and every method's RMSE / PSNR against the sorted reference
+//       fig3_teapot_alpha_sorted_wboit.png (document 002's teapot: alpha | sorted | WBOIT),
+//       document 002's figures with depth peeling on its teapot (shards where there is no
+//       teapot scene): fig3_<scene>_depth_peeling_layers_0-3.png (Fig. 3: layers 0-3, each
+//       alone over neutral grey) and fig6_<scene>_depth_peeling_1_2_4_8_exact.png (Fig. 6:
+//       1, 2, 4 and 8 layers and the exact composite, every layer peeled), every
+//       method's RMSE / PSNR against the sorted reference, and Fig. 6's against the exact one
 //   replay --bench [--scene demo|paper|heavy|complexity] [--frames N] [--warmup N] [--size WxH]
 //       per registered method: FPS and frame ms from the GPU (TIMESTAMP queries inside a
 //       TIMESTAMP_DISJOINT query, median over N frames), per-pass GPU ms, CPU ms per frame
@@ -60,6 +67,8 @@ struct Options {
   bool figures = false, bench = false, allFrames = false, listMethods = false, listScenes = false;
   std::string scene = "demo";  // --bench: demo | paper | heavy
   int warmup = -1;
+  uint32_t peelLayers = renderer::oit::kDefaultPeelLayers;
+  int layer = -1;  // --layer: the layer shown alone
 };
 
 std::unique_ptr<renderer::Translucency> Make(rhi::Device* device, rhi::DeviceContext* ctx,
@@ -112,6 +121,8 @@ int RunOne(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
   renderer::TranslucencySettings s;
   s.scene = o.demo;
   s.width = o.width, s.height = o.height;
+  s.peelLayers = o.peelLayers;
+  s.showLayer = o.layer;
   const int frames = Frames(o, o.demo);
   auto t = Make(device, ctx, s);
   std::filesystem::create_directories(o.out);
@@ -119,7 +130,8 @@ int RunOne(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
     Render(*t, *o.method);
     if (o.allFrames || i == frames - 1) {
       char name[256];
-      std::snprintf(name, sizeof name, "%s_%s_%04d.png", o.demo.c_str(), o.method->name, i);
+      const std::string layer = o.layer < 0 ? "" : "_layer" + std::to_string(o.layer);
+      std::snprintf(name, sizeof name, "%s_%s%s_%04d.png", o.demo.c_str(), o.method->name, layer.c_str(), i);
       WritePng((std::filesystem::path(o.out) / name).string(), t->ReadFrame(), o.width, o.height);
     }
   }
@@ -128,7 +140,7 @@ int RunOne(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
 
 int ListMethods() {
   for (const MethodInfo* m : renderer::oit::Methods())
-    std::printf("%-16s needs: %-24s %s\n", m->name, renderer::oit::DescribeNeeds(m->needs).c_str(), m->summary);
+    std::printf("%-18s needs: %-24s %s\n", m->name, renderer::oit::DescribeNeeds(m->needs).c_str(), m->summary);
   return 0;
 }
 
@@ -138,9 +150,55 @@ int ListScenes() {
   return 0;
 }
 
+// Document 002's figures with depth peeling, on its teapot where that scene exists
+// (another branch adds it), else on the shards.
+//   Fig. 3: layers 0-3, each alone over neutral grey.
+//   Fig. 6: 1, 2, 4 and 8 layers against the exact composite: kExactLayers layers, exact
+//           when the last of them is empty (the figure says so when it is not).
+void WritePeelingFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
+  constexpr uint32_t kExactLayers = 32;
+  const std::string scene = renderer::FindScene("teapot") ? "teapot" : "shards";
+  const MethodInfo& peeling = Method("depth-peeling");
+  renderer::TranslucencySettings s;
+  s.scene = scene;
+  s.width = o.width, s.height = o.height;
+  const int frames = Frames(o, scene);
+  const std::filesystem::path out(o.out);
+  uint32_t w = 0;
+
+  std::vector<std::vector<uint8_t>> layers;
+  for (int k = 0; k < 4; ++k) {
+    s.showLayer = k;
+    layers.push_back(Replay(device, ctx, s, peeling, frames));
+  }
+  s.showLayer = -1;
+  auto fig3 = SideBySide(layers, o.width, o.height, &w);
+  WritePng((out / ("fig3_" + scene + "_depth_peeling_layers_0-3.png")).string(), fig3, w, o.height);
+
+  s.peelLayers = kExactLayers;
+  auto exact = Make(device, ctx, s);
+  for (int i = 0; i < frames; ++i) Render(*exact, peeling);
+  const std::vector<uint8_t> exactImage = exact->ReadFrame();
+  const std::vector<uint64_t> samples = exact->MethodInstance(peeling)->LayerSamples(ctx);
+  if (samples.empty() || samples.back() != 0)
+    std::printf("%s: layer %u is not empty: the exact panel misses what lies behind it\n", scene.c_str(),
+                kExactLayers - 1);
+  std::vector<std::vector<uint8_t>> panels;
+  for (uint32_t n : {1u, 2u, 4u, 8u}) {
+    s.peelLayers = n;
+    panels.push_back(Replay(device, ctx, s, peeling, frames));
+    const double rmse = renderer::Rmse(panels.back(), exactImage);
+    std::printf("%-10s %-18s %10.3f %10.2f  (%u layers against the exact composite)\n", scene.c_str(), peeling.name,
+                rmse, renderer::Psnr(rmse), n);
+  }
+  panels.push_back(exactImage);
+  auto fig6 = SideBySide(panels, o.width, o.height, &w);
+  WritePng((out / ("fig6_" + scene + "_depth_peeling_1_2_4_8_exact.png")).string(), fig6, w, o.height);
+}
+
 int RunFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
   std::filesystem::create_directories(o.out);
-  std::printf("%-10s %-16s %10s %10s\n", "demo", "method", "RMSE", "PSNR dB");
+  std::printf("%-10s %-18s %10s %10s\n", "demo", "method", "RMSE", "PSNR dB");
   // Every scene with every method, measured against the sorted reference; the
   // figures are the source document's, each of named methods.
   struct Figure {
@@ -162,7 +220,7 @@ int RunFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
     for (const MethodInfo* m : renderer::oit::Methods()) images[m->name] = Replay(device, ctx, s, *m, frames);
     for (const MethodInfo* m : renderer::oit::Methods()) {
       double rmse = renderer::Rmse(images[m->name], images["sorted"]);
-      std::printf("%-10s %-16s %10.3f %10.2f\n", scene->name, m->name, rmse, renderer::Psnr(rmse));
+      std::printf("%-10s %-18s %10.3f %10.2f\n", scene->name, m->name, rmse, renderer::Psnr(rmse));
     }
     for (const Figure& f : figures) {
       if (std::string(f.scene) != scene->name) continue;
@@ -173,6 +231,7 @@ int RunFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
       WritePng((std::filesystem::path(o.out) / f.file).string(), fig, w, o.height);
     }
   }
+  WritePeelingFigures(device, ctx, o);
   return 0;
 }
 
@@ -268,7 +327,7 @@ std::vector<BenchReplay> WarmedUpReplays(rhi::Device* device, rhi::DeviceContext
       t->LastTimes();
     }
     if (!made) {
-      std::printf("%-16s skipped: %s\n", method->name, t->error().c_str());
+      std::printf("%-18s skipped: %s\n", method->name, t->error().c_str());
       continue;
     }
     replays.push_back({method, std::move(t), {}});
@@ -291,7 +350,7 @@ void PrintBenchRow(BenchReplay& r, const renderer::TranslucencySettings& base, b
   }
   // The 3D pass's fill rate: fragments shaded (and blended) per second.
   const double pass3dMs = Median(m.firstPass), fragmentCount = Median(m.fragments);
-  std::printf("%-16s %9.1f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9llu %10u %9.2f %9.2f %10.2f\n", r.method->name,
+  std::printf("%-18s %9.1f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9llu %10u %9.2f %9.2f %10.2f\n", r.method->name,
               gpuMs > 0 ? 1000.0 / gpuMs : 0.0, gpuMs, Median(m.opaque), Median(m.update), pass3dMs,
               Median(m.laterPasses), Median(m.cpu), Median(m.wall), static_cast<unsigned long long>(live),
               base.scene == "shards" ? base.shardCount : base.extraShards, fragmentCount / 1e6,
@@ -320,7 +379,7 @@ int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
                                      : particles ? int(base.rule.minLife + base.rule.lifeRange) : 2;
     std::printf("\n%s: %ux%u, %s%s, %d warm-up frames, the methods' frames interleaved\n", bc.name.c_str(),
                 base.width, base.height, base.scene.c_str(), base.extraShards ? " + shards" : "", warmup);
-    std::printf("%-16s %9s %9s %9s %9s %9s %9s %9s %9s %9s %10s %9s %9s %10s\n", "method", "FPS(GPU)", "GPU ms",
+    std::printf("%-18s %9s %9s %9s %9s %9s %9s %9s %9s %9s %10s %9s %9s %10s\n", "method", "FPS(GPU)", "GPU ms",
                 "opaque", "update", "3D pass", "later", "CPU ms", "wall ms", "particles", "shards", "3D Mfrag",
                 "Gfrag/s", "MiB");
     // One replay per method, each warmed up; then frame i of every method in turn, so that
@@ -380,9 +439,15 @@ int main(int argc, char** argv) {
       o.warmup = std::atoi(next().c_str());
     } else if (a == "--all-frames") {
       o.allFrames = true;
+    } else if (a == "--peel-layers") {
+      o.peelLayers = uint32_t(std::atoi(next().c_str()));
+    } else if (a == "--layer") {
+      o.layer = std::atoi(next().c_str());
+      if (o.layer < 0) Fail("--layer takes a layer number, 0 the nearest");
     } else {
       Fail("unknown argument " + a +
-           "\nusage: replay --demo SCENE --method METHOD [--frames N] [--size WxH] --out DIR"
+           "\nusage: replay --demo SCENE --method METHOD [--frames N] [--size WxH] [--peel-layers N] [--layer K]"
+           " --out DIR"
            "\n       replay --list-methods | --list-scenes"
            "\n       replay --figures --out DIR\n       replay --bench [--scene demo|paper|heavy|complexity] [--frames N] [--warmup N]"
            "\n  scenes: " + renderer::SceneNames() + "\n  methods: " + renderer::oit::MethodNames());

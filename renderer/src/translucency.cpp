@@ -73,6 +73,11 @@ class Translucency::FrameGeometry final : public oit::Geometry {
       if (!object->Draw(context, method_, camera_, pass, order, &why)) Fail(*object, why);
     }
   }
+  void SetShaderResource(const char* name, ShaderResourceView* view) override {
+    for (auto& object : impl_.objects)
+      if (FAILED(object->MethodEffect(method_)->GetVariableByName(name)->AsShaderResource()->SetResource(view)))
+        Fail(*object, std::string("no shader-resource variable ") + name);
+  }
   // Then unbinds the pixel shader's resources: the object's buffers it read are
   // stream-output targets in the next frame's update, and the method's per-pixel
   // buffers UAVs again (D3D11 would unbind them with a hazard warning).
@@ -205,10 +210,12 @@ Translucency::MethodState* Translucency::Prepare(const oit::MethodInfo& info) {
   if (auto found = m.methods.find(info.name); found != m.methods.end()) return &found->second;
   MethodState state;
   std::string why;
-  const oit::MethodSetup setup{
-      m.device, {settings_.width, settings_.height, 1}, uint32_t(m.objects.size()), settings_.fragmentStorage};
+  const oit::MethodSetup setup{m.device, {settings_.width, settings_.height, 1}, settings_.peelLayers,
+                               uint32_t(m.objects.size()), settings_.fragmentStorage};
   state.method = info.create(info, setup, &why);
   if (!state.method) return error_ = std::string(info.name) + ": " + why, nullptr;
+  if (settings_.showLayer >= 0 && !state.method->ShowLayer(uint32_t(settings_.showLayer)))
+    return error_ = std::string(info.name) + " keeps no layer " + std::to_string(settings_.showLayer), nullptr;
   for (auto& object : m.objects)
     if (!object->PrepareMethod(info, &why))
       return error_ = std::string(object->Name()) + " with " + info.name + ": " + why, nullptr;

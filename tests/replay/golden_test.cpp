@@ -23,6 +23,15 @@
 // against computations that do not use the goldens (exact_scenes_test.cpp):
 // complexity/sorted's centre equals OVER of the 8 quads composited on the CPU, and
 // teapot/sorted's near wall is red, its inside seen from within green, its ground blue.
+// The depth-peeling and dual-depth-peeling goldens (document 002, 8 layers) were
+// viewed at 3x beside sorted (the teapot and the quads as sorted shows them; the
+// smoke thinner and the fire faint, their farther layers missing; the shards tinting
+// the wall through their colours) and checked against computations that do not use
+// them (peeling_test.cpp): on the complexity scene depth peeling is within one step
+// of sorted everywhere, which exact_scenes_test.cpp checks against the CPU; dual
+// peeling is within one step of depth peeling there and on 40 shards; at these
+// settings, with 64 layers, the shards have 12 layers, and the teapot's and the
+// complexity stack's images of both methods are within one step of each other.
 // The prefix-sum goldens (document 004) were viewed at 3x beside sorted (smoke and
 // teapot alike, fire darker and orange as OVER instead of additive, shards tinted by
 // their coloured transmission as colored OIT's are) and their fresh renders are, at
@@ -98,6 +107,19 @@ constexpr SortedBound kSortedBounds[] = {
     {"complexity", "wboit", 7.5},             // 6.711
     {"complexity", "colored", 24.0},          // 21.748: the quads are colour filters (t = their colour)
     {"complexity", "colored-literal", 40.0},  // 37.040
+    // Document 002's exact methods at 8 layers (depth peeling: the 8 nearest, dual:
+    // the 4 nearest and the 4 farthest). Where 8 are all the layers they are `sorted`
+    // where that is exact; elsewhere they lose the layers beyond 8.
+    {"smoke", "depth-peeling", 9.0},        // 7.901: dense smoke has dozens of layers
+    {"smoke", "dual-depth-peeling", 9.5},   // 8.265
+    {"fire", "depth-peeling", 17.0},        // 15.624: OVER of the 8 nearest, not additive
+    {"fire", "dual-depth-peeling", 17.0},   // 15.253
+    {"shards", "depth-peeling", 33.0},      // 30.787: coloured transmission, up to 12 layers
+    {"shards", "dual-depth-peeling", 33.0}, // 30.930
+    {"teapot", "depth-peeling", 1.0},       // 0.490: per pixel exact, `sorted` per triangle
+    {"teapot", "dual-depth-peeling", 1.0},  // 0.487
+    {"complexity", "depth-peeling", 0.5},   // 0.350: both exact, rounded apart
+    {"complexity", "dual-depth-peeling", 0.6},  // 0.446
     // prefix-sum: exact, with each object's own per-surface model (shards: coloured
     // transmission, which OVER lacks; fire: OVER, where the reference adds), so it is
     // near sorted only where OVER is that model.

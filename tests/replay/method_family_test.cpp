@@ -92,10 +92,14 @@ TEST_F(MethodFamilyTest, FramesRaiseNoHazardWarnings) {
 
 // Memory: the targets a method creates, computed here from their formats
 // (accum R16G16B16A16_FLOAT: 8 bytes, revealage R8_UNORM: 1 byte per pixel).
+// Depth peeling, N = 8 layers: two R32_TYPELESS depth buffers (4 bytes each) and
+// per layer an R16G16B16A16_FLOAT colour and transmission (8 + 8). Dual depth
+// peeling: two R32G32_FLOAT depth ranges (8 each), two front colours and two front
+// opacities (R16G16B16A16_FLOAT, 8 each), one back colour and one back opacity (8 each).
 TEST_F(MethodFamilyTest, MethodsReportTheMemoryOfTheirTargets) {
   auto t = Make("shards");
   ASSERT_TRUE(t);
-  const uint64_t pixels = 40 * 24;
+  const uint64_t pixels = 40 * 24, layers = 8;
   const struct {
     const char* method;
     uint64_t bytes;
@@ -104,6 +108,8 @@ TEST_F(MethodFamilyTest, MethodsReportTheMemoryOfTheirTargets) {
                    {"wboit", pixels * 9},
                    {"colored", pixels * 9},
                    {"colored-literal", pixels * 9},
+                   {"depth-peeling", pixels * (2 * 4 + layers * (8 + 8))},
+                   {"dual-depth-peeling", pixels * (2 * 8 + 2 * 8 + 2 * 8 + 8 + 8)},
                    // a node pool of 16 a pixel (the default), 12 bytes a node, and a 4-byte head a pixel
                    {"linked-list", pixels * 16 * 12 + pixels * 4}};
   for (const auto& e : kExpected) {

@@ -47,6 +47,11 @@ struct TranslucencySettings {
   // The complexity scene: how many translucent quads overlap over the centre of the
   // frame (1..64), the depth complexity that exact methods' per-pixel storage grows with.
   uint32_t depthComplexity = 8;
+  // The peeling methods (document 002): the depth layers they keep, and, for a method
+  // that keeps layers, one of them (0: the nearest) shown alone instead of the
+  // composite (-1: the composite).
+  uint32_t peelLayers = oit::kDefaultPeelLayers;
+  int showLayer = -1;
   // The fragment-buffer methods' storage (prefix-sum's sizing, linked-list's pool).
   oit::FragmentStorage fragmentStorage;
   // Background.

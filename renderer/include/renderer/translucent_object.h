@@ -13,6 +13,10 @@
 #include "renderer/particle_system.h"
 #include "rhi/rhi.h"
 
+namespace fx {
+class Effect;
+}
+
 namespace renderer {
 
 class TranslucentObject {
@@ -22,6 +26,8 @@ class TranslucentObject {
   virtual const char* Name() const = 0;
   // Builds the object's effect for `method`; once per method, before its first Draw.
   virtual bool PrepareMethod(const oit::MethodInfo& method, std::string* error) = 0;
+  // That effect (after PrepareMethod), for the variables a method sets in it.
+  virtual fx::Effect* MethodEffect(const oit::MethodInfo& method) = 0;
   // The object's passes that precede every transparency pass (the particle update
   // pass); with countLive, LiveCount() then gives what it left alive.
   virtual void Update(rhi::DeviceContext* /*context*/, bool /*countLive*/) {}
@@ -29,8 +35,6 @@ class TranslucentObject {
   // `error`) when its effect for the method has no such pass.
   virtual bool Draw(rhi::DeviceContext* context, const oit::MethodInfo& method, const Camera& camera,
                     const char* pass, oit::DrawOrder order, std::string* error) = 0;
-  // The object's effect for `method` (after PrepareMethod).
-  virtual fx::Effect* MethodEffect(const oit::MethodInfo& method) = 0;
   // Draws a full-screen triangle with the pass `pass` of `method`'s technique (a
   // deferred resolve over a frame of size `frame`), with what the object's
   // ShadeTriangle reads bound (oit/common.fxh); false (and `error`) when its effect

@@ -61,6 +61,8 @@ class Meshes final : public TranslucentObject {
 
   const char* Name() const override { return "meshes.fx"; }
 
+  fx::Effect* MethodEffect(const oit::MethodInfo& method) override { return effects_.at(method.name).effect.Get(); }
+
   bool PrepareMethod(const oit::MethodInfo& method, std::string* error) override {
     if (effects_.count(method.name)) return true;
     MeshEffect e;
@@ -96,8 +98,6 @@ class Meshes final : public TranslucentObject {
     ctx->DrawIndexed(UINT(indices_.size()), 0, 0);
     return true;
   }
-
-  fx::Effect* MethodEffect(const oit::MethodInfo& method) override { return effects_.at(method.name).effect.Get(); }
 
   // The raw views ShadeTriangle reads were set with the effect; the ids are of the
   // unsorted index buffer, which the deferred passes draw.

@@ -108,6 +108,8 @@ class Shards final : public TranslucentObject {
 
   const char* Name() const override { return "shards.fx"; }
 
+  fx::Effect* MethodEffect(const oit::MethodInfo& method) override { return effects_.at(method.name).effect.Get(); }
+
   bool PrepareMethod(const oit::MethodInfo& method, std::string* error) override {
     if (effects_.count(method.name)) return true;
     ShardEffect e;
@@ -147,8 +149,6 @@ class Shards final : public TranslucentObject {
     ctx->DrawIndexedInstanced(indexCount_, UINT(instances_.size()), 0, 0, 0);
     return true;
   }
-
-  fx::Effect* MethodEffect(const oit::MethodInfo& method) override { return effects_.at(method.name).effect.Get(); }
 
   // The raw views ShadeTriangle reads were set with the effect; the ids are of the
   // unsorted instance buffer, which the deferred passes draw.

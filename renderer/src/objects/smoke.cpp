@@ -94,6 +94,8 @@ class Smoke final : public TranslucentObject {
 
   const char* Name() const override { return "smoke.fx"; }
 
+  fx::Effect* MethodEffect(const oit::MethodInfo& method) override { return effects_.at(method.name).effect.Get(); }
+
   bool PrepareMethod(const oit::MethodInfo& method, std::string* error) override {
     if (effects_.count(method.name)) return true;
     EffectDefines defines;
@@ -141,8 +143,6 @@ class Smoke final : public TranslucentObject {
       ctx->DrawAuto();  // the CPU does not know how many particles survived
     return true;
   }
-
-  fx::Effect* MethodEffect(const oit::MethodInfo& method) override { return effects_.at(method.name).effect.Get(); }
 
   // ShadeTriangle reads the particles by index from the buffer the frame drew (the
   // deferred passes draw in submission order).

@@ -10,6 +10,8 @@ namespace renderer::oit {
   X(kWboit)                     \
   X(kColored)                   \
   X(kColoredLiteral)            \
+  X(kDepthPeeling)              \
+  X(kDualDepthPeeling)          \
   X(kPrefixSum)                 \
   X(kLinkedList)
 

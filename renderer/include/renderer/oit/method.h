@@ -57,6 +57,10 @@ enum class DrawOrder {
 class Geometry {
  public:
   virtual void Draw(rhi::DeviceContext* context, const char* pass, DrawOrder order) = 0;
+  // Sets the shader-resource variable `name` of every object's effect for this
+  // method: a texture the method made that its object passes read (depth peeling's
+  // previous layer). Later Draws bind it.
+  virtual void SetShaderResource(const char* name, rhi::ShaderResourceView* view) = 0;
   // Applies the pass `pass` of the object's effect to a full-screen triangle: a
   // resolve that shades the object's stored fragments per pixel (deferred shading,
   // shaders_hlsl/oit/common.fxh). One object's pass covers the frame, so a method that
@@ -100,10 +104,20 @@ class Method {
   // has come back from the GPU (a frame or more late: no wait), for methods with
   // bounded per-fragment storage; never dropped silently. 0 for the others.
   virtual uint64_t LostFragments() const { return 0; }
+
+  // Methods that keep the translucent fragments as depth layers (depth peeling).
+  // From the next Render on, the frame shows layer `layer` (0: the nearest) alone
+  // instead of the composite; false when the method keeps no such layer.
+  virtual bool ShowLayer(uint32_t /*layer*/) { return false; }
+  // The samples each layer of the last Render holds (an occlusion query per
+  // layer), waiting for the GPU; empty when the method keeps no layers.
+  virtual std::vector<uint64_t> LayerSamples(rhi::DeviceContext* /*context*/) const { return {}; }
 };
 
 struct MethodInfo;
 
+// The layers the peeling methods keep unless told otherwise.
+inline constexpr uint32_t kDefaultPeelLayers = 8;
 // How the fragment-buffer methods (prefix-sum, linked-list) size their storage.
 struct FragmentStorage {
   // prefix-sum: false (the default) sizes the fragment buffer from earlier frames'
@@ -118,6 +132,7 @@ struct FragmentStorage {
 struct MethodSetup {
   rhi::Device* device = nullptr;
   FrameDesc frame;
+  uint32_t peelLayers = kDefaultPeelLayers;  // the peeling methods: at most this many depth layers
   uint32_t objectCount = 0;  // the scene's translucent objects
   FragmentStorage fragmentStorage;
 };

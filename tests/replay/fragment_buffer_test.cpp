@@ -244,10 +244,12 @@ int LargestDifference(const std::vector<uint8_t>& a, const std::vector<uint8_t>&
 // edges: pixels there lose their whole list or walk into other pixels' nodes (the
 // resolve then runs into llvmpipe's 65535-turn loop cap), while the node counter is
 // exact (the test below) and prefix-sum, whose atomics add per pixel, equals the CPU
-// reference. Not explained yet: not the depth test, not the counter kind, not
-// InterlockedExchange against a compare-exchange loop, not a render target bound, not
-// an SV_Coverage guard against helper invocations, not 16-byte nodes, not llvmpipe's
-// vector width. These checks skip there.
+// reference. The head update is what breaks: with InterlockedMax instead of
+// InterlockedExchange (valid only where nodes are taken in the order a pixel's
+// fragments update its head, as on llvmpipe) the complexity image equals prefix-sum's.
+// A compare-exchange loop breaks alike; not the depth test, the counter kind, a bound
+// render target, an SV_Coverage guard against helpers, 16-byte nodes or llvmpipe's
+// vector width. These checks skip there (README, Known gaps).
 bool LinkedListsBrokenHere(rhi::Device* device) {
   return std::string(device->GetAdapterName()).find("llvmpipe") == 0;
 }

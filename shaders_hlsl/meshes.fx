@@ -3,12 +3,21 @@
 // transmission), lit two-sided by the scene's directional light. A transparency
 // method's passes come from OIT_METHOD, the method's include
 // (shaders_hlsl/oit/common.fxh gives the contract this file fulfils).
+#include "oit/deferred.hlsli"
 
 cbuffer MeshParams : register(b1) {
   float4x4 ViewProj;
   float3 LightDir;  // towards the light
   float Pad;
+  float3 Eye;       // deferred shading: which side of a triangle faces the eye
+  float Pad2;
 };
+
+// Raw views of the object's vertex and index buffers (R32_UINT), which deferred
+// shading (ShadeTriangle) reads by triangle id. Raw: D3D11 forbids structured
+// vertex or index buffers and allows raw views of them.
+ByteAddressBuffer MeshVertices;  // 64-byte MeshVertex (below)
+ByteAddressBuffer MeshIndices;
 
 // Lambert with the opaque pass's ambient (scene.fx, Ambient = 0.45), so that a
 // translucent surface and the backdrop behind it are lit alike.
@@ -68,7 +77,48 @@ void Shade(MeshPixel p, out float3 c, out float a, out float3 t) {
   t = p.transmission;
 }
 
+// Deferred shading (oit/common.fxh): one DrawIndexed, so SV_PrimitiveID numbers the triangles.
+uint TriangleId(MeshPixel p, uint primitiveId) { return primitiveId; }
+
+MeshVertexOut LoadMeshVertex(uint index) {
+  uint base = index * 64;
+  MeshVertexOut v;
+  v.position = 0;  // not interpolated: the caller has the pixel
+  v.normal = asfloat(MeshVertices.Load3(base + 12));
+  v.front = asfloat(MeshVertices.Load3(base + 24));
+  v.back = asfloat(MeshVertices.Load3(base + 36));
+  v.opacity = asfloat(MeshVertices.Load(base + 48));
+  v.transmission = asfloat(MeshVertices.Load3(base + 52));
+  return v;
+}
+
+// What the rasterizer gives Shade, from the triangle and the pixel: the attributes
+// interpolated with the world-space barycentrics of the point the pixel shows (what
+// perspective-correct interpolation computes), and the side facing the eye, which is
+// the front when the triangle is wound clockwise as the eye sees it (D3D11's default).
+void ShadeTriangle(uint id, float4 position, out float3 c, out float a, out float3 t) {
+  uint3 index = MeshIndices.Load3(id * 12);
+  float3 p0 = asfloat(MeshVertices.Load3(index.x * 64)), p1 = asfloat(MeshVertices.Load3(index.y * 64)),
+         p2 = asfloat(MeshVertices.Load3(index.z * 64));
+  float3 world = UnprojectPixel(position);
+  float3 n = cross(p1 - p0, p2 - p0);
+  float w0 = dot(cross(p2 - p1, world - p1), n) / dot(n, n);
+  float w1 = dot(cross(p0 - p2, world - p2), n) / dot(n, n);
+  float w2 = 1.0 - w0 - w1;
+  MeshVertexOut v0 = LoadMeshVertex(index.x), v1 = LoadMeshVertex(index.y), v2 = LoadMeshVertex(index.z);
+  MeshPixel p;
+  p.position = position;
+  p.normal = w0 * v0.normal + w1 * v1.normal + w2 * v2.normal;
+  p.front = w0 * v0.front + w1 * v1.front + w2 * v2.front;
+  p.back = w0 * v0.back + w1 * v1.back + w2 * v2.back;
+  p.opacity = w0 * v0.opacity + w1 * v1.opacity + w2 * v2.opacity;
+  p.transmission = w0 * v0.transmission + w1 * v1.transmission + w2 * v2.transmission;
+  p.isFrontFace = dot(n, Eye - p0) > 0;
+  Shade(p, c, a, t);
+}
+
 #define OBJECT_VS VSMesh
+#define OBJECT_DEFERRED 1
 #define OBJECT_GS NULL
 #define OBJECT_PIXEL MeshPixel
 

@@ -10,6 +10,7 @@
 #define OBJECT_GS NULL
 #define OBJECT_PIXEL ShardPixel
 #define OBJECT_COLORED_TRANSMISSION 1  // glass filters the light behind it by its tint
+#define OBJECT_DEFERRED 1              // TriangleId and ShadeTriangle (shards.hlsl)
 
 // Loaded on its own, as any FX file, the object is drawn with plain alpha blending.
 #ifndef OIT_METHOD

@@ -9,6 +9,7 @@
 // defined (the fire demo), OVER means additive blending, order-independent by
 // construction, in technique Fire.
 #include "particle.hlsli"
+#include "oit/deferred.hlsli"
 
 cbuffer SmokeParams : register(b1) {
   float4x4 ViewProj;
@@ -21,6 +22,10 @@ cbuffer SmokeParams : register(b1) {
 };
 
 Texture2D Puff;  // rgb: normal * 0.5 + 0.5, a: density
+// A raw view of the particle buffer the frame draws (40-byte Particles), which
+// deferred shading (ShadeTriangle) reads by particle index. Raw: D3D11 allows raw
+// views of a stream-output and vertex buffer, not structured ones.
+ByteAddressBuffer Particles;
 SamplerState Linear { Filter = MIN_MAG_MIP_LINEAR; AddressU = Clamp; AddressV = Clamp; AddressW = Clamp; };
 
 struct Center {
@@ -36,6 +41,7 @@ struct Billboard {
   // LightDir in the billboard's basis (x, y, z): the PS lights the normal map in
   // that basis, which passes 3 values to every fragment where the basis is 9.
   nointerpolation float3 light : LIGHT;
+  nointerpolation uint particle : PARTICLE;  // its index in the buffer drawn: the triangle id of deferred shading
 };
 
 Center VSSmoke(Particle p) {
@@ -47,23 +53,37 @@ Center VSSmoke(Particle p) {
   return c;
 }
 
-[maxvertexcount(4)]
-void GSBillboard(point Center input[1], inout TriangleStream<Billboard> stream) {
-  if (input[0].kind == 0) return;  // emitters are invisible
-  float3 z = normalize(Eye - input[0].center);
-  float3 x = normalize(cross(float3(0, 1, 0), z));
-  float3 y = cross(z, x);
-  float size = Size * (0.5 + input[0].age);
+// The billboard's camera-facing basis and half size, and LightDir in that basis.
+struct BillboardFrame {
+  float3 x, y, z;
+  float size;
+  float3 light;
+};
+
+BillboardFrame FrameOf(Center c) {
+  BillboardFrame f;
+  f.z = normalize(Eye - c.center);
+  f.x = normalize(cross(float3(0, 1, 0), f.z));
+  f.y = cross(f.z, f.x);
+  f.size = Size * (0.5 + c.age);
   float3 l = normalize(LightDir);
-  float3 light = float3(dot(x, l), dot(y, l), dot(z, l));
+  f.light = float3(dot(f.x, l), dot(f.y, l), dot(f.z, l));
+  return f;
+}
+
+[maxvertexcount(4)]
+void GSBillboard(point Center input[1], uint particle : SV_PrimitiveID, inout TriangleStream<Billboard> stream) {
+  if (input[0].kind == 0) return;  // emitters are invisible
+  BillboardFrame f = FrameOf(input[0]);
   float2 corners[4] = {float2(-1, -1), float2(-1, 1), float2(1, -1), float2(1, 1)};
   for (uint i = 0; i < 4; ++i) {
     Billboard b;
-    float3 world = input[0].center + (corners[i].x * x + corners[i].y * y) * size;
+    float3 world = input[0].center + (corners[i].x * f.x + corners[i].y * f.y) * f.size;
     b.position = mul(ViewProj, float4(world, 1));
     b.uv = float2(corners[i].x, -corners[i].y) * 0.5 + 0.5;
     b.age = input[0].age;
-    b.light = light;
+    b.light = f.light;
+    b.particle = particle;
     stream.Append(b);
   }
 }
@@ -71,8 +91,8 @@ void GSBillboard(point Center input[1], inout TriangleStream<Billboard> stream) 
 // Colour, alpha and transmission of a fragment. Smoke: hot and bright when young,
 // dark and thin when old, lit through the normal map. Flames: white-yellow core
 // fading through orange to dark red, self-lit (the normal map only modulates).
-void Shade(Billboard b, out float3 c, out float a, out float3 t) {
-  float4 puff = Puff.Sample(Linear, b.uv);
+// `puff` is the puff texture at the fragment's uv.
+void ShadePuff(float4 puff, Billboard b, out float3 c, out float a, out float3 t) {
   float3 n = puff.rgb * 2.0 - 1.0;
   // The basis is orthonormal, so dot(normalize(basis * n), l) = dot(normalize(n), basis^T l).
   float light = saturate(dot(normalize(n), b.light)) * 0.75 + 0.3;
@@ -95,7 +115,41 @@ void Shade(Billboard b, out float3 c, out float a, out float3 t) {
   }
 }
 
+void Shade(Billboard b, out float3 c, out float a, out float3 t) { ShadePuff(Puff.Sample(Linear, b.uv), b, c, a, t); }
+
+// Deferred shading (oit/common.fxh): the GS passes the particle's index (its input
+// SV_PrimitiveID: one point per particle) to every fragment of its billboard.
+uint TriangleId(Billboard b, uint primitiveId) { return b.particle; }
+
+// What GSBillboard gives Shade, from the particle and the pixel: the uv is the point
+// where the eye's ray through the pixel meets the billboard's plane, projected onto
+// its basis (the ray's direction comes from the unprojected pixel; intersecting the
+// plane avoids the depth's precision, which 1/255 of the puff's shading needs). SampleLevel 0, not
+// Sample: a resolve's neighbouring pixels shade other particles, so derivatives mean
+// nothing there; the puff has one mip level, where both read the same texels.
+void ShadeTriangle(uint id, float4 position, out float3 c, out float a, out float3 t) {
+  uint base = id * 40;
+  Particle p;
+  p.origin = asfloat(Particles.Load3(base));
+  p.velocity = asfloat(Particles.Load3(base + 12));
+  p.seedAge = Particles.Load2(base + 24);
+  p.kindLife = Particles.Load2(base + 32);
+  Center center = VSSmoke(p);
+  BillboardFrame f = FrameOf(center);
+  float3 ray = UnprojectPixel(position) - Eye;
+  float3 world = Eye + ray * (dot(center.center - Eye, f.z) / dot(ray, f.z));
+  float3 offset = (world - center.center) / f.size;
+  Billboard b;
+  b.position = position;
+  b.uv = float2(dot(offset, f.x), -dot(offset, f.y)) * 0.5 + 0.5;
+  b.age = center.age;
+  b.light = f.light;
+  b.particle = id;
+  ShadePuff(Puff.SampleLevel(Linear, b.uv, 0), b, c, a, t);
+}
+
 #define OBJECT_VS VSSmoke
+#define OBJECT_DEFERRED 1
 #define OBJECT_GS CompileShader(gs_5_0, GSBillboard())
 #define OBJECT_PIXEL Billboard
 

@@ -103,9 +103,19 @@ bool ParticleSystem::Initialize(Device* device, const ParticleSettings& settings
                        0, 0, 0};
   SUBRESOURCE_DATA initData{emitters.data(), 0, 0};
   if (FAILED(device->CreateBuffer(&initDesc, &initData, emitters_.GetAddressOf()))) return fail("the emitter buffer");
-  BUFFER_DESC pingPong{capacity_ * kParticleStride, USAGE_DEFAULT, BIND_VERTEX_BUFFER | BIND_STREAM_OUTPUT, 0, 0, 0};
-  for (auto& buffer : buffers_)
-    if (FAILED(device->CreateBuffer(&pingPong, nullptr, buffer.GetAddressOf()))) return fail("a particle buffer");
+  // Raw views too, for shaders that read particles by index (deferred shading): D3D11
+  // allows raw views of stream-output and vertex buffers, not structured ones.
+  BUFFER_DESC pingPong{capacity_ * kParticleStride, USAGE_DEFAULT,
+                       BIND_VERTEX_BUFFER | BIND_STREAM_OUTPUT | BIND_SHADER_RESOURCE, 0,
+                       RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS, 0};
+  SHADER_RESOURCE_VIEW_DESC raw{};
+  raw.Format = DXGI_FORMAT_R32_TYPELESS;
+  raw.ViewDimension = SRV_DIMENSION_BUFFEREX;
+  raw.BufferEx = {0, capacity_ * kParticleStride / 4, BUFFEREX_SRV_FLAG_RAW};
+  for (size_t i = 0; i < buffers_.size(); ++i)
+    if (FAILED(device->CreateBuffer(&pingPong, nullptr, buffers_[i].GetAddressOf())) ||
+        FAILED(device->CreateShaderResourceView(buffers_[i].Get(), &raw, rawViews_[i].GetAddressOf())))
+      return fail("a particle buffer");
 
   constexpr UINT kPuffSize = 64;
   std::vector<uint8_t> texels = PuffTexels(kPuffSize);

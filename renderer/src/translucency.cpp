@@ -65,8 +65,8 @@ struct Translucency::Impl {
 // The objects as a method's passes draw them: every object, with the method of the frame.
 class Translucency::FrameGeometry final : public oit::Geometry {
  public:
-  FrameGeometry(Impl& impl, const oit::MethodInfo& method, const Camera& camera)
-      : impl_(impl), method_(method), camera_(camera) {}
+  FrameGeometry(Impl& impl, const oit::MethodInfo& method, const Camera& camera, const oit::FrameDesc& frame)
+      : impl_(impl), method_(method), camera_(camera), frame_(frame) {}
   void Draw(DeviceContext* context, const char* pass, oit::DrawOrder order) override {
     for (auto& object : impl_.objects) {
       std::string why;
@@ -78,6 +78,20 @@ class Translucency::FrameGeometry final : public oit::Geometry {
       if (FAILED(object->MethodEffect(method_)->GetVariableByName(name)->AsShaderResource()->SetResource(view)))
         Fail(*object, std::string("no shader-resource variable ") + name);
   }
+  // Then unbinds the pixel shader's resources: the object's buffers it read are
+  // stream-output targets in the next frame's update, and the method's per-pixel
+  // buffers UAVs again (D3D11 would unbind them with a hazard warning).
+  void DrawFullscreen(DeviceContext* context, const char* pass) override {
+    for (auto& object : impl_.objects) {
+      std::string why;
+      if (!object->DrawFullscreen(context, method_, camera_, frame_, pass, &why)) Fail(*object, why);
+    }
+    ShaderResourceView* none[COMMONSHADER_INPUT_RESOURCE_SLOT_COUNT] = {};
+    context->PSSetShaderResources(0, COMMONSHADER_INPUT_RESOURCE_SLOT_COUNT, none);
+  }
+  void SetEffectVariables(const std::function<void(fx::Effect&)>& set) override {
+    for (auto& object : impl_.objects) set(*object->MethodEffect(method_));
+  }
   std::string error;
 
  private:
@@ -87,6 +101,7 @@ class Translucency::FrameGeometry final : public oit::Geometry {
   Impl& impl_;
   const oit::MethodInfo& method_;
   const Camera& camera_;
+  oit::FrameDesc frame_;
 };
 
 namespace {
@@ -195,7 +210,12 @@ Translucency::MethodState* Translucency::Prepare(const oit::MethodInfo& info) {
   if (auto found = m.methods.find(info.name); found != m.methods.end()) return &found->second;
   MethodState state;
   std::string why;
-  state.method = info.create(info, {m.device, {settings_.width, settings_.height, 1}, settings_.peelLayers}, &why);
+  const oit::MethodSetup setup{m.device,
+                               {settings_.width, settings_.height, 1},
+                               settings_.peelLayers,
+                               uint32_t(m.objects.size()),
+                               settings_.fragmentStorage};
+  state.method = info.create(info, setup, &why);
   if (!state.method) return error_ = std::string(info.name) + ": " + why, nullptr;
   if (settings_.showLayer >= 0 && !state.method->ShowLayer(uint32_t(settings_.showLayer)))
     return error_ = std::string(info.name) + " keeps no layer " + std::to_string(settings_.showLayer), nullptr;
@@ -246,7 +266,7 @@ bool Translucency::RenderFrame(const oit::MethodInfo& method) {
   if (timed) m.Stamp(*state, 1);
   for (auto& object : m.objects) object->Update(ctx, count);
   if (timed) m.Stamp(*state, 2);
-  FrameGeometry geometry(m, method, camera_);
+  FrameGeometry geometry(m, method, camera_, {settings_.width, settings_.height, 1});
   FrameMarks marks(ctx, timed ? &state->stamps : nullptr, m.firstPassStatistics.Get());
   state->method->Render({ctx, {m.frameRtv.Get(), m.dsv.Get()}, &geometry, &marks});
   marks.Finish();

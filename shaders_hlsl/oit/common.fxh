@@ -11,6 +11,24 @@
 //                 colour, opacity and transmission of a fragment.
 // and, when its surfaces filter the light they let through by colour (the glass
 // shards of document 000), OBJECT_COLORED_TRANSMISSION 1.
+// Deferred shading, which the fragment-buffer methods (prefix_sum.fxh,
+// linked_list.fxh: document 004) need: they store a (triangle id, depth) per
+// fragment and shade only in their resolve, a full-screen pass of the object's
+// effect. Such an object defines OBJECT_DEFERRED 1 and provides
+//   uint TriangleId(OBJECT_PIXEL p, uint primitiveId)
+//                 an id unique within the object for the fragment's triangle
+//                 (primitiveId: the pixel shader's SV_PrimitiveID), e.g. instance
+//                 * triangles per instance + SV_PrimitiveID, or a particle's index
+//                 passed on by the geometry shader;
+//   void ShadeTriangle(uint id, float4 position, out float3 c, out float a, out float3 t)
+//                 what Shade gives the fragment of triangle `id` at `position` (as
+//                 SV_Position: the pixel centre in xy, the fragment's depth in z),
+//                 equal to it within 1/255 (tests/replay/fragment_buffer_test.cpp):
+//                 it rebuilds Shade's input from the object's buffers (raw views
+//                 the object binds) and the world point the pixel shows
+//                 (UnprojectPixel, oit/deferred.hlsli, which the object includes).
+// The deferred passes draw the object in submission order: the ids refer to its
+// buffers as drawn then.
 // A method's technique holds every pass of the method, as an FX11 technique
 // does; a method's own passes (those that draw no object, such as composing)
 // are also built from the same include without an object (oit/method.fx):

@@ -32,6 +32,11 @@
 // peeling is within one step of depth peeling there and on 40 shards; at these
 // settings, with 64 layers, the shards have 12 layers, and the teapot's and the
 // complexity stack's images of both methods are within one step of each other.
+// The prefix-sum goldens (document 004) were viewed at 3x beside sorted (smoke and
+// teapot alike, fire darker and orange as OVER instead of additive, shards tinted by
+// their coloured transmission as colored OIT's are) and their fresh renders are, at
+// 64x36, within 1/255 per channel of a composite computed on the CPU in double from
+// the same fragments and their deferred shading (fragment_buffer_test.cpp).
 // Tolerance against the golden: RMSE <= 1.5 (8-bit steps) and at most 1% of the
 // pixels off by more than 8 in a channel: rasterization and filtering may differ
 // slightly between Vulkan implementations; a wrong blend state, weight, pass or
@@ -115,6 +120,14 @@ constexpr SortedBound kSortedBounds[] = {
     {"teapot", "dual-depth-peeling", 1.0},  // 0.487
     {"complexity", "depth-peeling", 0.5},   // 0.350: both exact, rounded apart
     {"complexity", "dual-depth-peeling", 0.6},  // 0.446
+    // prefix-sum: exact, with each object's own per-surface model (shards: coloured
+    // transmission, which OVER lacks; fire: OVER, where the reference adds), so it is
+    // near sorted only where OVER is that model.
+    {"smoke", "prefix-sum", 1.0},       // 0.560: per fragment where sorted orders whole particles
+    {"fire", "prefix-sum", 18.5},       // 16.699: OVER, where the reference adds
+    {"shards", "prefix-sum", 34.0},     // 31.393: the tint of the transmitted background, as colored
+    {"teapot", "prefix-sum", 1.0},      // 0.454: per fragment where sorted orders triangle centroids
+    {"complexity", "prefix-sum", 1.0},  // 0.576
 };
 
 const SortedBound* FindBound(const char* scene, const char* method) {
@@ -151,6 +164,10 @@ TEST_F(GoldenTest, EveryDemoAndMethodMatchesItsGoldenImage) {
   for (const renderer::SceneInfo* scene : renderer::Scenes()) {
     const std::vector<uint8_t> sorted = Render(*scene, *renderer::oit::FindMethod("sorted"));
     for (const MethodInfo* method : renderer::oit::Methods()) {
+      // Lavapipe breaks the linked lists along triangle edges (fragment_buffer_test.cpp):
+      // no golden image of that method from it.
+      if (std::string(method->name) == "linked-list" && std::string(device->GetAdapterName()).find("llvmpipe") == 0)
+        continue;
       const std::string name = std::string(scene->name) + "_" + method->name;
       SCOPED_TRACE(name);
       const std::vector<uint8_t> image = Render(*scene, *method);

@@ -8,6 +8,7 @@
 
 #include "gpu_test.h"
 #include "renderer/translucency.h"
+#include "renderer/oit/prefix_sum.h"
 #include "rhi/trace.h"
 
 namespace rhi_test {
@@ -108,13 +109,37 @@ TEST_F(MethodFamilyTest, MethodsReportTheMemoryOfTheirTargets) {
                    {"colored", pixels * 9},
                    {"colored-literal", pixels * 9},
                    {"depth-peeling", pixels * (2 * 4 + layers * (8 + 8))},
-                   {"dual-depth-peeling", pixels * (2 * 8 + 2 * 8 + 2 * 8 + 8 + 8)}};
+                   {"dual-depth-peeling", pixels * (2 * 8 + 2 * 8 + 2 * 8 + 8 + 8)},
+                   // a node pool of 16 a pixel (the default), 12 bytes a node, and a 4-byte head a pixel
+                   {"linked-list", pixels * 16 * 12 + pixels * 4}};
   for (const auto& e : kExpected) {
     const MethodInfo* method = renderer::oit::FindMethod(e.method);
     ASSERT_NE(method, nullptr) << e.method;
     ASSERT_TRUE(t->RenderFrame(*method)) << t->error();
     EXPECT_EQ(t->MethodInstance(*method)->MemoryBytes(), e.bytes) << e.method;
   }
+}
+
+// prefix-sum: the fragment buffer (8 bytes a fragment; its first frame sized to 1.5x
+// the frame's total, which the method read back), the per-pixel counts, offsets and
+// cursors (4 bytes each), the total (4), and the scan's block sums: two words (the sums
+// and their scan) per group of 512 at every level until one group remains.
+TEST_F(MethodFamilyTest, PrefixSumReportsItsFragmentBufferAndPerPixelBuffers) {
+  auto t = Make("shards");
+  ASSERT_TRUE(t);
+  const MethodInfo& method = *renderer::oit::FindMethod("prefix-sum");
+  ASSERT_TRUE(t->RenderFrame(method)) << t->error();
+  const auto frame = renderer::oit::ReadPrefixSumFrame(*t->MethodInstance(method), context.Get());
+  ASSERT_TRUE(frame);
+  const uint64_t pixels = 40 * 24;
+  uint64_t scanBytes = 0;
+  for (uint64_t n = pixels;; n = (n + 511) / 512) {
+    scanBytes += 2 * 4 * ((n + 511) / 512);
+    if ((n + 511) / 512 == 1) break;
+  }
+  const uint64_t fragments = frame->total + frame->total / 2;
+  EXPECT_EQ(frame->capacity, fragments);
+  EXPECT_EQ(t->MethodInstance(method)->MemoryBytes(), fragments * 8 + pixels * 12 + 4 + scanBytes);
 }
 
 // A method whose pass no object's effect has: the frame is refused with the

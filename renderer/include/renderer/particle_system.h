@@ -47,6 +47,8 @@ class ParticleSystem {
 
   // The buffer the last update wrote (what Draw draws).
   rhi::Buffer* current() const { return buffers_[current_].Get(); }
+  // A raw view (ByteAddressBuffer) of it, for shaders that read particles by index.
+  rhi::ShaderResourceView* currentRawView() const { return rawViews_[current_].Get(); }
   uint32_t updates() const { return updates_; }
   // Particles (emitters included) the last counting Update left alive.
   uint64_t liveCount() const { return liveCount_; }
@@ -66,6 +68,7 @@ class ParticleSystem {
   rhi::ComPtr<rhi::Query> streamOutStatistics_;
   rhi::ComPtr<rhi::Buffer> emitters_;
   std::array<rhi::ComPtr<rhi::Buffer>, 2> buffers_;
+  std::array<rhi::ComPtr<rhi::ShaderResourceView>, 2> rawViews_;
   rhi::ComPtr<rhi::InputLayout> layout_;
   rhi::ComPtr<fx::Effect> effect_;
   fx::EffectPass *updatePass_ = nullptr, *drawPass_ = nullptr;

@@ -52,6 +52,8 @@ struct TranslucencySettings {
   // composite (-1: the composite).
   uint32_t peelLayers = oit::kDefaultPeelLayers;
   int showLayer = -1;
+  // The fragment-buffer methods' storage (prefix-sum's sizing, linked-list's pool).
+  oit::FragmentStorage fragmentStorage;
   // Background.
   bool neutralBackground = false;  // a plain grey wall instead of coloured stripes
   bool timestamps = false;         // per-pass TIMESTAMP queries and the first method pass's statistics (LastTimes)

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <string>
 
+#include "fx/effect.h"
 #include "renderer/oit/method.h"
 #include "renderer/particle_system.h"
 #include "rhi/rhi.h"
@@ -34,6 +35,12 @@ class TranslucentObject {
   // `error`) when its effect for the method has no such pass.
   virtual bool Draw(rhi::DeviceContext* context, const oit::MethodInfo& method, const Camera& camera,
                     const char* pass, oit::DrawOrder order, std::string* error) = 0;
+  // Draws a full-screen triangle with the pass `pass` of `method`'s technique (a
+  // deferred resolve over a frame of size `frame`), with what the object's
+  // ShadeTriangle reads bound (oit/common.fxh); false (and `error`) when its effect
+  // for the method has no such pass.
+  virtual bool DrawFullscreen(rhi::DeviceContext* context, const oit::MethodInfo& method, const Camera& camera,
+                              const oit::FrameDesc& frame, const char* pass, std::string* error) = 0;
   // Primitives alive after the last counting Update; 0 for objects that do not change.
   virtual uint64_t LiveCount() const { return 0; }
 };

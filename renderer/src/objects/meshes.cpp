@@ -29,10 +29,11 @@ struct MeshVertex {
 };
 static_assert(sizeof(MeshVertex) == 64);
 
-// meshes.fx built for one method, with the variable a frame sets.
+// meshes.fx built for one method, with the variables a frame sets.
 struct MeshEffect {
   ComPtr<fx::Effect> effect;
   fx::EffectMatrixVariable* viewProj = nullptr;
+  fx::EffectVectorVariable* eye = nullptr;
 };
 
 class Meshes final : public TranslucentObject {
@@ -42,11 +43,16 @@ class Meshes final : public TranslucentObject {
   bool Initialize(const std::vector<TriangleMesh>& meshes, std::string* error) {
     for (const TriangleMesh& mesh : meshes) Append(mesh);
     if (indices_.empty()) return true;
+    // The buffers deferred shading reads (ShadeTriangle) also get raw views.
     const UINT indexBytes = UINT(indices_.size() * sizeof(uint32_t));
-    if (!CreateBuffer(UINT(vertices_.size() * sizeof(MeshVertex)), USAGE_IMMUTABLE, BIND_VERTEX_BUFFER,
-                      vertices_.data(), &vertexBuffer_) ||
-        !CreateBuffer(indexBytes, USAGE_IMMUTABLE, BIND_INDEX_BUFFER, indices_.data(), &indexBuffer_) ||
-        !CreateBuffer(indexBytes, USAGE_DEFAULT, BIND_INDEX_BUFFER, nullptr, &sortedIndexBuffer_)) {
+    const UINT vertexBytes = UINT(vertices_.size() * sizeof(MeshVertex));
+    if (!CreateBuffer(vertexBytes, USAGE_IMMUTABLE, BIND_VERTEX_BUFFER | BIND_SHADER_RESOURCE, vertices_.data(),
+                      &vertexBuffer_) ||
+        !CreateBuffer(indexBytes, USAGE_IMMUTABLE, BIND_INDEX_BUFFER | BIND_SHADER_RESOURCE, indices_.data(),
+                      &indexBuffer_) ||
+        !CreateBuffer(indexBytes, USAGE_DEFAULT, BIND_INDEX_BUFFER, nullptr, &sortedIndexBuffer_) ||
+        !CreateRawView(setup_.device, vertexBuffer_.Get(), vertexBytes, &vertexView_) ||
+        !CreateRawView(setup_.device, indexBuffer_.Get(), indexBytes, &indexView_)) {
       *error = "meshes: creating the buffers failed";
       return false;
     }
@@ -66,6 +72,9 @@ class Meshes final : public TranslucentObject {
     const float light[4] = {setup_.lightDir.x, setup_.lightDir.y, setup_.lightDir.z, 0};
     fx->GetVariableByName("LightDir")->AsVector()->SetFloatVector(light);
     e.viewProj = fx->GetVariableByName("ViewProj")->AsMatrix();
+    e.eye = fx->GetVariableByName("Eye")->AsVector();
+    fx->GetVariableByName("MeshVertices")->AsShaderResource()->SetResource(vertexView_.Get());
+    fx->GetVariableByName("MeshIndices")->AsShaderResource()->SetResource(indexView_.Get());
     if (!layout_ && !CreateLayout(fx, error)) return false;
     effects_.emplace(method.name, std::move(e));
     return true;
@@ -77,7 +86,7 @@ class Meshes final : public TranslucentObject {
     MeshEffect& e = effects_.at(method.name);
     fx::EffectPass* p = FindPass(e.effect.Get(), nullptr, pass, error);
     if (!p) return false;
-    e.viewProj->SetMatrixTranspose(&camera.viewProj[0][0]);  // GLM stores columns: FX11's row-major, transposed
+    SetCamera(e, camera);
     Buffer* indices = order == oit::DrawOrder::BackToFront ? SortBackToFront(ctx, camera) : indexBuffer_.Get();
     Buffer* vb = vertexBuffer_.Get();
     const UINT stride = sizeof(MeshVertex), offset = 0;
@@ -90,7 +99,25 @@ class Meshes final : public TranslucentObject {
     return true;
   }
 
+
+  // The raw views ShadeTriangle reads were set with the effect; the ids are of the
+  // unsorted index buffer, which the deferred passes draw.
+  bool DrawFullscreen(DeviceContext* ctx, const oit::MethodInfo& method, const Camera& camera,
+                      const oit::FrameDesc& frame, const char* pass, std::string* error) override {
+    if (indices_.empty()) return true;
+    MeshEffect& e = effects_.at(method.name);
+    SetCamera(e, camera);
+    return DrawFullscreenPass(ctx, e.effect.Get(), frame, pass, error);
+  }
+
  private:
+  static void SetCamera(MeshEffect& e, const Camera& camera) {
+    e.viewProj->SetMatrixTranspose(&camera.viewProj[0][0]);  // GLM stores columns: FX11's row-major, transposed
+    const float eye[4] = {camera.eye.x, camera.eye.y, camera.eye.z, 0};
+    e.eye->SetFloatVector(eye);
+    SetInverseViewProj(e.effect.Get(), camera);
+  }
+
   void Append(const TriangleMesh& mesh) {
     const uint32_t base = uint32_t(vertices_.size());
     const MeshMaterial& m = mesh.material;
@@ -100,7 +127,9 @@ class Meshes final : public TranslucentObject {
   }
 
   bool CreateBuffer(UINT size, USAGE usage, UINT bind, const void* data, ComPtr<Buffer>* out) {
-    BUFFER_DESC d{size, usage, bind, 0, 0, 0};
+    // A raw view needs RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS on its buffer.
+    const UINT misc = (bind & BIND_SHADER_RESOURCE) ? RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS : 0;
+    BUFFER_DESC d{size, usage, bind, 0, misc, 0};
     SUBRESOURCE_DATA init{data, 0, 0};
     return SUCCEEDED(setup_.device->CreateBuffer(&d, data ? &init : nullptr, out->GetAddressOf()));
   }
@@ -150,6 +179,7 @@ class Meshes final : public TranslucentObject {
   std::vector<MeshVertex> vertices_;
   std::vector<uint32_t> indices_;
   ComPtr<Buffer> vertexBuffer_, indexBuffer_, sortedIndexBuffer_;
+  ComPtr<ShaderResourceView> vertexView_, indexView_;  // raw, for ShadeTriangle
   ComPtr<InputLayout> layout_;
   std::map<std::string, MeshEffect> effects_;  // by method name
 };

@@ -40,4 +40,16 @@ std::unique_ptr<TranslucentObject> CreateShards(const ObjectSetup& setup, const 
 std::unique_ptr<TranslucentObject> CreateMeshes(const ObjectSetup& setup, const std::vector<TriangleMesh>& meshes,
                                                 std::string* error);
 
+// Deferred shading (shaders_hlsl/oit/common.fxh, deferred.hlsli), shared by the objects:
+// a raw view (ByteAddressBuffer) of the first `bytes` of `buffer` (a multiple of 4),
+// which needs RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS and BIND_SHADER_RESOURCE on it;
+bool CreateRawView(rhi::Device* device, rhi::Buffer* buffer, uint32_t bytes, rhi::ComPtr<rhi::ShaderResourceView>* out);
+// deferred.hlsli's InvViewProj, which the objects set with their ViewProj (every pass
+// of theirs can unproject);
+void SetInverseViewProj(fx::Effect* effect, const Camera& camera);
+// and the resolve's full-screen triangle (Draw(3, 0), no vertex buffer) with `pass` of
+// `effect`, after setting deferred.hlsli's FrameSize from the frame.
+bool DrawFullscreenPass(rhi::DeviceContext* context, fx::Effect* effect, const oit::FrameDesc& frame,
+                        const char* pass, std::string* error);
+
 }  // namespace renderer

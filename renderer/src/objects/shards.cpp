@@ -89,12 +89,17 @@ class Shards final : public TranslucentObject {
     indexCount_ = UINT(indices.size());
     instances_ = ShardInstances(setup_.seed, settings_);
     const UINT instanceBytes = UINT(std::max<size_t>(1, instances_.size()) * sizeof(ShardInstance));
-    if (!CreateBuffer(UINT(mesh.size() * sizeof(ShardVertex)), USAGE_IMMUTABLE, BIND_VERTEX_BUFFER, mesh.data(),
-                      &vertices_) ||
-        !CreateBuffer(UINT(indices.size() * 2), USAGE_IMMUTABLE, BIND_INDEX_BUFFER, indices.data(), &indices_) ||
-        !CreateBuffer(instanceBytes, USAGE_DEFAULT, BIND_VERTEX_BUFFER,
+    // The buffers deferred shading reads (ShadeTriangle) also get raw views.
+    const UINT raw = BIND_SHADER_RESOURCE;
+    const UINT vertexBytes = UINT(mesh.size() * sizeof(ShardVertex)), indexBytes = UINT(indices.size() * 2);
+    if (!CreateBuffer(vertexBytes, USAGE_IMMUTABLE, BIND_VERTEX_BUFFER | raw, mesh.data(), &vertices_) ||
+        !CreateBuffer(indexBytes, USAGE_IMMUTABLE, BIND_INDEX_BUFFER | raw, indices.data(), &indices_) ||
+        !CreateBuffer(instanceBytes, USAGE_DEFAULT, BIND_VERTEX_BUFFER | raw,
                       instances_.empty() ? nullptr : instances_.data(), &instanceBuffer_) ||
-        !CreateBuffer(instanceBytes, USAGE_DEFAULT, BIND_VERTEX_BUFFER, nullptr, &sortedInstances_)) {
+        !CreateBuffer(instanceBytes, USAGE_DEFAULT, BIND_VERTEX_BUFFER, nullptr, &sortedInstances_) ||
+        !CreateRawView(setup_.device, vertices_.Get(), vertexBytes, &vertexView_) ||
+        !CreateRawView(setup_.device, indices_.Get(), indexBytes, &indexView_) ||
+        !CreateRawView(setup_.device, instanceBuffer_.Get(), instanceBytes, &instanceView_)) {
       *error = "shards: creating the buffers failed";
       return false;
     }
@@ -114,6 +119,10 @@ class Shards final : public TranslucentObject {
     const float light[4] = {setup_.lightDir.x, setup_.lightDir.y, setup_.lightDir.z, 0};
     fx->GetVariableByName("LightDir")->AsVector()->SetFloatVector(light);
     fx->GetVariableByName("SurfaceTint")->AsScalar()->SetFloat(settings_.surfaceTint);
+    fx->GetVariableByName("TrianglesPerShard")->AsScalar()->SetInt(int(indexCount_ / 3));
+    fx->GetVariableByName("ShardVertices")->AsShaderResource()->SetResource(vertexView_.Get());
+    fx->GetVariableByName("ShardIndices")->AsShaderResource()->SetResource(indexView_.Get());
+    fx->GetVariableByName("ShardInstances")->AsShaderResource()->SetResource(instanceView_.Get());
     e.viewProj = fx->GetVariableByName("ViewProj")->AsMatrix();
     e.eye = fx->GetVariableByName("Eye")->AsVector();
     if (!layout_ && !CreateLayout(fx, error)) return false;
@@ -127,9 +136,7 @@ class Shards final : public TranslucentObject {
     ShardEffect& e = effects_.at(method.name);
     fx::EffectPass* p = FindPass(e.effect.Get(), nullptr, pass, error);
     if (!p) return false;
-    e.viewProj->SetMatrixTranspose(&camera.viewProj[0][0]);  // GLM stores columns: FX11's row-major, transposed
-    const float eye[4] = {camera.eye.x, camera.eye.y, camera.eye.z, 0};
-    e.eye->SetFloatVector(eye);
+    SetCamera(e, camera);
     Buffer* instances =
         order == oit::DrawOrder::BackToFront ? SortBackToFront(ctx, camera) : instanceBuffer_.Get();
     Buffer* vbs[2] = {vertices_.Get(), instances};
@@ -143,9 +150,29 @@ class Shards final : public TranslucentObject {
     return true;
   }
 
+
+  // The raw views ShadeTriangle reads were set with the effect; the ids are of the
+  // unsorted instance buffer, which the deferred passes draw.
+  bool DrawFullscreen(DeviceContext* ctx, const oit::MethodInfo& method, const Camera& camera,
+                      const oit::FrameDesc& frame, const char* pass, std::string* error) override {
+    if (instances_.empty()) return true;
+    ShardEffect& e = effects_.at(method.name);
+    SetCamera(e, camera);
+    return DrawFullscreenPass(ctx, e.effect.Get(), frame, pass, error);
+  }
+
  private:
+  static void SetCamera(ShardEffect& e, const Camera& camera) {
+    e.viewProj->SetMatrixTranspose(&camera.viewProj[0][0]);  // GLM stores columns: FX11's row-major, transposed
+    const float eye[4] = {camera.eye.x, camera.eye.y, camera.eye.z, 0};
+    e.eye->SetFloatVector(eye);
+    SetInverseViewProj(e.effect.Get(), camera);
+  }
+
   bool CreateBuffer(UINT size, USAGE usage, UINT bind, const void* data, ComPtr<Buffer>* out) {
-    BUFFER_DESC d{size, usage, bind, 0, 0, 0};
+    // A raw view needs RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS on its buffer.
+    const UINT misc = (bind & BIND_SHADER_RESOURCE) ? RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS : 0;
+    BUFFER_DESC d{size, usage, bind, 0, misc, 0};
     SUBRESOURCE_DATA init{data, 0, 0};
     return SUCCEEDED(setup_.device->CreateBuffer(&d, data ? &init : nullptr, out->GetAddressOf()));
   }
@@ -191,6 +218,7 @@ class Shards final : public TranslucentObject {
   UINT indexCount_ = 0;
   std::vector<ShardInstance> instances_;
   ComPtr<Buffer> vertices_, indices_, instanceBuffer_, sortedInstances_;
+  ComPtr<ShaderResourceView> vertexView_, indexView_, instanceView_;  // raw, for ShadeTriangle
   ComPtr<InputLayout> layout_;
   std::map<std::string, ShardEffect> effects_;  // by method name
 };

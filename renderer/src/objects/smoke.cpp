@@ -127,9 +127,8 @@ class Smoke final : public TranslucentObject {
     SmokeEffect& e = effects_.at(method.name);
     fx::EffectPass* p = FindPass(e.effect.Get(), nullptr, pass, error);
     if (!p) return false;
-    e.viewProj->SetMatrixTranspose(&camera.viewProj[0][0]);  // GLM stores columns: FX11's row-major, transposed
-    const float eye[4] = {camera.eye.x, camera.eye.y, camera.eye.z, 0};
-    e.eye->SetFloatVector(eye);
+    SetCamera(e, camera);
+    e.effect->GetVariableByName("Particles")->AsShaderResource()->SetResource(particles_->currentRawView());
     Buffer* input = particles_->current();
     UINT sortedCount = 0;
     if (order == oit::DrawOrder::BackToFront) input = SortBackToFront(ctx, camera, &sortedCount);
@@ -145,7 +144,25 @@ class Smoke final : public TranslucentObject {
     return true;
   }
 
+
+  // ShadeTriangle reads the particles by index from the buffer the frame drew (the
+  // deferred passes draw in submission order).
+  bool DrawFullscreen(DeviceContext* ctx, const oit::MethodInfo& method, const Camera& camera,
+                      const oit::FrameDesc& frame, const char* pass, std::string* error) override {
+    SmokeEffect& e = effects_.at(method.name);
+    SetCamera(e, camera);
+    e.effect->GetVariableByName("Particles")->AsShaderResource()->SetResource(particles_->currentRawView());
+    return DrawFullscreenPass(ctx, e.effect.Get(), frame, pass, error);
+  }
+
  private:
+  static void SetCamera(SmokeEffect& e, const Camera& camera) {
+    e.viewProj->SetMatrixTranspose(&camera.viewProj[0][0]);  // GLM stores columns: FX11's row-major, transposed
+    const float eye[4] = {camera.eye.x, camera.eye.y, camera.eye.z, 0};
+    e.eye->SetFloatVector(eye);
+    SetInverseViewProj(e.effect.Get(), camera);
+  }
+
   bool CreateLayout(fx::Effect* effect, std::string* error) {
     fx::PASS_DESC desc;
     const INPUT_ELEMENT_DESC elements[] = {

@@ -11,7 +11,9 @@ namespace renderer::oit {
   X(kColored)                   \
   X(kColoredLiteral)            \
   X(kDepthPeeling)              \
-  X(kDualDepthPeeling)
+  X(kDualDepthPeeling)          \
+  X(kPrefixSum)                 \
+  X(kLinkedList)
 
 #define RENDERER_OIT_DECLARE(info) extern const MethodInfo info;
 RENDERER_OIT_METHODS(RENDERER_OIT_DECLARE)

@@ -11,12 +11,17 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "rhi/rhi.h"
+
+namespace fx {
+class Effect;
+}
 
 namespace renderer::oit {
 
@@ -56,6 +61,14 @@ class Geometry {
   // method: a texture the method made that its object passes read (depth peeling's
   // previous layer). Later Draws bind it.
   virtual void SetShaderResource(const char* name, rhi::ShaderResourceView* view) = 0;
+  // Applies the pass `pass` of the object's effect to a full-screen triangle: a
+  // resolve that shades the object's stored fragments per pixel (deferred shading,
+  // shaders_hlsl/oit/common.fxh). One object's pass covers the frame, so a method that
+  // resolves this way refuses scenes of several objects (MethodSetup::objectCount).
+  virtual void DrawFullscreen(rhi::DeviceContext* context, const char* pass) = 0;
+  // Calls `set` with every object's effect for the method: the variables of the
+  // method's own passes in those effects (the views of its per-pixel buffers).
+  virtual void SetEffectVariables(const std::function<void(fx::Effect& effect)>& set) = 0;
 
  protected:
   ~Geometry() = default;
@@ -95,18 +108,33 @@ class Method {
   // The samples each layer of the last Render holds (an occlusion query per
   // layer), waiting for the GPU; empty when the method keeps no layers.
   virtual std::vector<uint64_t> LayerSamples(rhi::DeviceContext* /*context*/) const { return {}; }
+  // Translucent fragments the method could not store in the last frame whose count
+  // has come back from the GPU (a frame or more late: no wait), for methods with
+  // bounded per-fragment storage; never dropped silently. 0 for the others.
+  virtual uint64_t LostFragments() const { return 0; }
 };
 
 struct MethodInfo;
 
 // The layers the peeling methods keep unless told otherwise.
 inline constexpr uint32_t kDefaultPeelLayers = 8;
+// How the fragment-buffer methods (prefix-sum, linked-list) size their storage.
+struct FragmentStorage {
+  // prefix-sum: false (the default) sizes the fragment buffer from earlier frames'
+  // totals, read back a frame late without waiting, grown with hysteresis; true sizes
+  // it to each frame's own total, read back in the frame (the CPU waits for the GPU).
+  bool exactSizing = false;
+  // linked-list: the node pool's capacity, in nodes per pixel of the frame.
+  uint32_t nodesPerPixel = 16;
+};
 
 // What a method is created with.
 struct MethodSetup {
   rhi::Device* device = nullptr;
   FrameDesc frame;
   uint32_t peelLayers = kDefaultPeelLayers;  // the peeling methods: at most this many depth layers
+  uint32_t objectCount = 0;  // the scene's translucent objects
+  FragmentStorage fragmentStorage;
 };
 
 using MethodFactory = std::unique_ptr<Method> (*)(const MethodInfo& info, const MethodSetup& setup,

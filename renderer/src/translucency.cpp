@@ -210,8 +210,11 @@ Translucency::MethodState* Translucency::Prepare(const oit::MethodInfo& info) {
   if (auto found = m.methods.find(info.name); found != m.methods.end()) return &found->second;
   MethodState state;
   std::string why;
-  const oit::MethodSetup setup{m.device, {settings_.width, settings_.height, 1}, settings_.peelLayers,
-                               uint32_t(m.objects.size()), settings_.fragmentStorage};
+  const oit::MethodSetup setup{m.device,
+                               {settings_.width, settings_.height, 1},
+                               settings_.peelLayers,
+                               uint32_t(m.objects.size()),
+                               settings_.fragmentStorage};
   state.method = info.create(info, setup, &why);
   if (!state.method) return error_ = std::string(info.name) + ": " + why, nullptr;
   if (settings_.showLayer >= 0 && !state.method->ShowLayer(uint32_t(settings_.showLayer)))

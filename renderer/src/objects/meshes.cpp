@@ -99,6 +99,7 @@ class Meshes final : public TranslucentObject {
     return true;
   }
 
+
   // The raw views ShadeTriangle reads were set with the effect; the ids are of the
   // unsorted index buffer, which the deferred passes draw.
   bool DrawFullscreen(DeviceContext* ctx, const oit::MethodInfo& method, const Camera& camera,

@@ -150,6 +150,7 @@ class Shards final : public TranslucentObject {
     return true;
   }
 
+
   // The raw views ShadeTriangle reads were set with the effect; the ids are of the
   // unsorted instance buffer, which the deferred passes draw.
   bool DrawFullscreen(DeviceContext* ctx, const oit::MethodInfo& method, const Camera& camera,

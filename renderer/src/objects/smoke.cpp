@@ -144,6 +144,7 @@ class Smoke final : public TranslucentObject {
     return true;
   }
 
+
   // ShadeTriangle reads the particles by index from the buffer the frame drew (the
   // deferred passes draw in submission order).
   bool DrawFullscreen(DeviceContext* ctx, const oit::MethodInfo& method, const Camera& camera,

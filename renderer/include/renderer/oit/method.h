@@ -100,10 +100,6 @@ class Method {
   virtual uint64_t MemoryBytes() const = 0;
   // Its passes in the order Render runs them (the names of their effect passes).
   virtual const std::vector<std::string>& PassNames() const = 0;
-  // Translucent fragments the method could not store in the last frame whose count
-  // has come back from the GPU (a frame or more late: no wait), for methods with
-  // bounded per-fragment storage; never dropped silently. 0 for the others.
-  virtual uint64_t LostFragments() const { return 0; }
 
   // Methods that keep the translucent fragments as depth layers (depth peeling).
   // From the next Render on, the frame shows layer `layer` (0: the nearest) alone
@@ -112,6 +108,10 @@ class Method {
   // The samples each layer of the last Render holds (an occlusion query per
   // layer), waiting for the GPU; empty when the method keeps no layers.
   virtual std::vector<uint64_t> LayerSamples(rhi::DeviceContext* /*context*/) const { return {}; }
+  // Translucent fragments the method could not store in the last frame whose count
+  // has come back from the GPU (a frame or more late: no wait), for methods with
+  // bounded per-fragment storage; never dropped silently. 0 for the others.
+  virtual uint64_t LostFragments() const { return 0; }
 };
 
 struct MethodInfo;

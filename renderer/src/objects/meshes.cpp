@@ -128,7 +128,7 @@ class Meshes final : public TranslucentObject {
 
   bool CreateBuffer(UINT size, USAGE usage, UINT bind, const void* data, ComPtr<Buffer>* out) {
     // A raw view needs RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS on its buffer.
-    const UINT misc = (bind & BIND_SHADER_RESOURCE) ? RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS : 0;
+    const UINT misc = (bind & BIND_SHADER_RESOURCE) ? UINT(RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS) : 0u;
     BUFFER_DESC d{size, usage, bind, 0, misc, 0};
     SUBRESOURCE_DATA init{data, 0, 0};
     return SUCCEEDED(setup_.device->CreateBuffer(&d, data ? &init : nullptr, out->GetAddressOf()));

@@ -270,6 +270,7 @@ std::vector<BenchCase> BenchCases(const Options& o) {
       s.scene = "complexity";
       s.width = o.width, s.height = o.height;
       s.depthComplexity = complexity;
+      s.peelLayers = complexity;  // depth peeling exact at every complexity (dual: the same layers)
       cases.push_back({"complexity " + std::to_string(complexity), s});
     }
   } else {

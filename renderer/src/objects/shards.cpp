@@ -10,7 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "fx/effect.h"
-#include "objects/objects.h"
+#include "objects/effect_object.h"
 #include "random.h"
 #include "renderer/effect_files.h"
 
@@ -71,16 +71,18 @@ std::vector<ShardInstance> ShardInstances(uint32_t seed, const ShardSettings& s)
   return out;
 }
 
-// shards.fx built for one method, with the variables a frame sets.
-struct ShardEffect {
-  ComPtr<fx::Effect> effect;
-  fx::EffectMatrixVariable* viewProj = nullptr;
-  fx::EffectVectorVariable* eye = nullptr;
-};
-
-class Shards final : public TranslucentObject {
+class Shards final : public EffectObject {
  public:
-  Shards(const ObjectSetup& setup, const ShardSettings& settings) : setup_(setup), settings_(settings) {}
+  Shards(const ObjectSetup& setup, const ShardSettings& settings)
+      : EffectObject(setup, "shards.fx",
+                     {{"POSITION", 0, DXGI_FORMAT_R32G32B32_FLOAT, 0, 0, INPUT_PER_VERTEX_DATA, 0},
+                      {"NORMAL", 0, DXGI_FORMAT_R32G32B32_FLOAT, 0, 12, INPUT_PER_VERTEX_DATA, 0},
+                      {"WORLD", 0, DXGI_FORMAT_R32G32B32A32_FLOAT, 1, 0, INPUT_PER_INSTANCE_DATA, 1},
+                      {"WORLD", 1, DXGI_FORMAT_R32G32B32A32_FLOAT, 1, 16, INPUT_PER_INSTANCE_DATA, 1},
+                      {"WORLD", 2, DXGI_FORMAT_R32G32B32A32_FLOAT, 1, 32, INPUT_PER_INSTANCE_DATA, 1},
+                      {"WORLD", 3, DXGI_FORMAT_R32G32B32A32_FLOAT, 1, 48, INPUT_PER_INSTANCE_DATA, 1},
+                      {"TINT", 0, DXGI_FORMAT_R32G32B32A32_FLOAT, 1, 64, INPUT_PER_INSTANCE_DATA, 1}}),
+        settings_(settings) {}
 
   bool Initialize(std::string* error) {
     std::vector<ShardVertex> mesh = ShardMesh(setup_.seed);
@@ -106,37 +108,11 @@ class Shards final : public TranslucentObject {
     return true;
   }
 
-  const char* Name() const override { return "shards.fx"; }
-
-  fx::Effect* MethodEffect(const oit::MethodInfo& method) override { return effects_.at(method.name).effect.Get(); }
-
-  bool PrepareMethod(const oit::MethodInfo& method, std::string* error) override {
-    if (effects_.count(method.name)) return true;
-    ShardEffect e;
-    e.effect = oit::LoadMethodEffect(setup_.device, method, "shards.fx", {}, error);
-    if (!e.effect) return false;
-    fx::Effect* fx = e.effect.Get();
-    const float light[4] = {setup_.lightDir.x, setup_.lightDir.y, setup_.lightDir.z, 0};
-    fx->GetVariableByName("LightDir")->AsVector()->SetFloatVector(light);
-    fx->GetVariableByName("SurfaceTint")->AsScalar()->SetFloat(settings_.surfaceTint);
-    fx->GetVariableByName("TrianglesPerShard")->AsScalar()->SetInt(int(indexCount_ / 3));
-    fx->GetVariableByName("ShardVertices")->AsShaderResource()->SetResource(vertexView_.Get());
-    fx->GetVariableByName("ShardIndices")->AsShaderResource()->SetResource(indexView_.Get());
-    fx->GetVariableByName("ShardInstances")->AsShaderResource()->SetResource(instanceView_.Get());
-    e.viewProj = fx->GetVariableByName("ViewProj")->AsMatrix();
-    e.eye = fx->GetVariableByName("Eye")->AsVector();
-    if (!layout_ && !CreateLayout(fx, error)) return false;
-    effects_.emplace(method.name, std::move(e));
-    return true;
-  }
-
   bool Draw(DeviceContext* ctx, const oit::MethodInfo& method, const Camera& camera, const char* pass,
             oit::DrawOrder order, std::string* error) override {
-    if (instances_.empty()) return true;
-    ShardEffect& e = effects_.at(method.name);
-    fx::EffectPass* p = FindPass(e.effect.Get(), nullptr, pass, error);
+    if (Empty()) return true;
+    fx::EffectPass* p = PassForFrame(method, camera, pass, error);
     if (!p) return false;
-    SetCamera(e, camera);
     Buffer* instances =
         order == oit::DrawOrder::BackToFront ? SortBackToFront(ctx, camera) : instanceBuffer_.Get();
     Buffer* vbs[2] = {vertices_.Get(), instances};
@@ -150,77 +126,36 @@ class Shards final : public TranslucentObject {
     return true;
   }
 
-
-  // The raw views ShadeTriangle reads were set with the effect; the ids are of the
-  // unsorted instance buffer, which the deferred passes draw.
-  bool DrawFullscreen(DeviceContext* ctx, const oit::MethodInfo& method, const Camera& camera,
-                      const oit::FrameDesc& frame, const char* pass, std::string* error) override {
-    if (instances_.empty()) return true;
-    ShardEffect& e = effects_.at(method.name);
-    SetCamera(e, camera);
-    return DrawFullscreenPass(ctx, e.effect.Get(), frame, pass, error);
-  }
-
  private:
-  static void SetCamera(ShardEffect& e, const Camera& camera) {
-    e.viewProj->SetMatrixTranspose(&camera.viewProj[0][0]);  // GLM stores columns: FX11's row-major, transposed
-    const float eye[4] = {camera.eye.x, camera.eye.y, camera.eye.z, 0};
-    e.eye->SetFloatVector(eye);
-    SetInverseViewProj(e.effect.Get(), camera);
-  }
-
-  bool CreateBuffer(UINT size, USAGE usage, UINT bind, const void* data, ComPtr<Buffer>* out) {
-    // A raw view needs RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS on its buffer.
-    const UINT misc = (bind & BIND_SHADER_RESOURCE) ? UINT(RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS) : 0u;
-    BUFFER_DESC d{size, usage, bind, 0, misc, 0};
-    SUBRESOURCE_DATA init{data, 0, 0};
-    return SUCCEEDED(setup_.device->CreateBuffer(&d, data ? &init : nullptr, out->GetAddressOf()));
-  }
-
-  bool CreateLayout(fx::Effect* effect, std::string* error) {
-    const INPUT_ELEMENT_DESC elements[] = {
-        {"POSITION", 0, DXGI_FORMAT_R32G32B32_FLOAT, 0, 0, INPUT_PER_VERTEX_DATA, 0},
-        {"NORMAL", 0, DXGI_FORMAT_R32G32B32_FLOAT, 0, 12, INPUT_PER_VERTEX_DATA, 0},
-        {"WORLD", 0, DXGI_FORMAT_R32G32B32A32_FLOAT, 1, 0, INPUT_PER_INSTANCE_DATA, 1},
-        {"WORLD", 1, DXGI_FORMAT_R32G32B32A32_FLOAT, 1, 16, INPUT_PER_INSTANCE_DATA, 1},
-        {"WORLD", 2, DXGI_FORMAT_R32G32B32A32_FLOAT, 1, 32, INPUT_PER_INSTANCE_DATA, 1},
-        {"WORLD", 3, DXGI_FORMAT_R32G32B32A32_FLOAT, 1, 48, INPUT_PER_INSTANCE_DATA, 1},
-        {"TINT", 0, DXGI_FORMAT_R32G32B32A32_FLOAT, 1, 64, INPUT_PER_INSTANCE_DATA, 1}};
-    fx::PASS_DESC desc;
-    if (FAILED(effect->GetTechniqueByIndex(0)->GetPassByIndex(0)->GetDesc(&desc)) ||
-        FAILED(setup_.device->CreateInputLayout(elements, 7, desc.pIAInputSignature, desc.IAInputSignatureSize,
-                                                layout_.GetAddressOf()))) {
-      *error = "shards: creating the input layout failed";
-      return false;
-    }
+  // The raw views ShadeTriangle reads; the ids are of the unsorted instance buffer,
+  // which the deferred passes draw.
+  bool Configure(fx::Effect& effect, const oit::MethodInfo&, std::string*) override {
+    effect.GetVariableByName("SurfaceTint")->AsScalar()->SetFloat(settings_.surfaceTint);
+    effect.GetVariableByName("TrianglesPerShard")->AsScalar()->SetInt(int(indexCount_ / 3));
+    effect.GetVariableByName("ShardVertices")->AsShaderResource()->SetResource(vertexView_.Get());
+    effect.GetVariableByName("ShardIndices")->AsShaderResource()->SetResource(indexView_.Get());
+    effect.GetVariableByName("ShardInstances")->AsShaderResource()->SetResource(instanceView_.Get());
     return true;
   }
+  bool Empty() const override { return instances_.empty(); }
 
   // The reference order: instances reordered back to front by the view depth of
   // their centre (stable, so ties keep their order); returns their buffer.
   Buffer* SortBackToFront(DeviceContext* ctx, const Camera& camera) {
-    const glm::vec3 forward =
-        glm::normalize(glm::vec3(camera.viewProj[0][3], camera.viewProj[1][3], camera.viewProj[2][3]));  // w row
     std::vector<float> depth(instances_.size());
-    for (size_t i = 0; i < depth.size(); ++i)
-      depth[i] = glm::dot(glm::vec3(instances_[i].world[3]) - camera.eye, forward);
-    std::vector<uint32_t> order(depth.size());
-    std::iota(order.begin(), order.end(), 0u);
-    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return depth[a] > depth[b]; });
+    for (size_t i = 0; i < depth.size(); ++i) depth[i] = ViewDepth(camera, glm::vec3(instances_[i].world[3]));
+    const std::vector<uint32_t> order = BackToFrontOrder(depth);
     std::vector<ShardInstance> sorted(order.size());
     for (size_t i = 0; i < order.size(); ++i) sorted[i] = instances_[order[i]];
     ctx->UpdateSubresource(sortedInstances_.Get(), 0, nullptr, sorted.data(), 0, 0);
     return sortedInstances_.Get();
   }
 
-  ObjectSetup setup_;
   ShardSettings settings_;
   UINT indexCount_ = 0;
   std::vector<ShardInstance> instances_;
   ComPtr<Buffer> vertices_, indices_, instanceBuffer_, sortedInstances_;
   ComPtr<ShaderResourceView> vertexView_, indexView_, instanceView_;  // raw, for ShadeTriangle
-  ComPtr<InputLayout> layout_;
-  std::map<std::string, ShardEffect> effects_;  // by method name
 };
 
 }  // namespace

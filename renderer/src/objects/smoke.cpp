@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "fx/effect.h"
-#include "objects/objects.h"
+#include "objects/effect_object.h"
 #include "random.h"
 #include "renderer/effect_files.h"
 
@@ -64,16 +64,15 @@ std::vector<uint8_t> PuffTexels(uint32_t size, uint32_t seed) {
   return texels;
 }
 
-// smoke.fx built for one method, with the variables a frame sets.
-struct SmokeEffect {
-  ComPtr<fx::Effect> effect;
-  fx::EffectMatrixVariable* viewProj = nullptr;
-  fx::EffectVectorVariable* eye = nullptr;
-};
-
-class Smoke final : public TranslucentObject {
+class Smoke final : public EffectObject {
  public:
-  Smoke(const ObjectSetup& setup, bool fire) : setup_(setup), fire_(fire) {}
+  Smoke(const ObjectSetup& setup, bool fire)
+      : EffectObject(setup, "smoke.fx",
+                     {{"ORIGIN", 0, DXGI_FORMAT_R32G32B32_FLOAT, 0, 0, INPUT_PER_VERTEX_DATA, 0},
+                      {"VELOCITY", 0, DXGI_FORMAT_R32G32B32_FLOAT, 0, 12, INPUT_PER_VERTEX_DATA, 0},
+                      {"SEEDAGE", 0, DXGI_FORMAT_R32G32_UINT, 0, 24, INPUT_PER_VERTEX_DATA, 0},
+                      {"KINDLIFE", 0, DXGI_FORMAT_R32G32_UINT, 0, 32, INPUT_PER_VERTEX_DATA, 0}}),
+        fire_(fire) {}
 
   bool Initialize(const ParticleSettings& settings, std::string* error) {
     particles_ = ParticleSystem::Create(setup_.device, settings, error);
@@ -92,43 +91,13 @@ class Smoke final : public TranslucentObject {
     return true;
   }
 
-  const char* Name() const override { return "smoke.fx"; }
-
-  fx::Effect* MethodEffect(const oit::MethodInfo& method) override { return effects_.at(method.name).effect.Get(); }
-
-  bool PrepareMethod(const oit::MethodInfo& method, std::string* error) override {
-    if (effects_.count(method.name)) return true;
-    EffectDefines defines;
-    if (fire_) defines.emplace_back("FIRE", "1");
-    SmokeEffect e;
-    e.effect = oit::LoadMethodEffect(setup_.device, method, "smoke.fx", defines, error);
-    if (!e.effect) return false;
-    fx::Effect* fx = e.effect.Get();
-    const ParticleSettings& ps = particles_->settings();
-    fx->GetVariableByName("Seconds")->AsScalar()->SetFloat(ps.secondsPerUpdate);
-    SetVector(fx->GetVariableByName("Acceleration"), ps.acceleration);
-    fx->GetVariableByName("Size")->AsScalar()->SetFloat(ps.size);
-    SetVector(fx->GetVariableByName("LightDir"), setup_.lightDir);
-    fx->GetVariableByName("Flame")->AsScalar()->SetFloat(fire_ ? 1.0f : 0.0f);
-    fx->GetVariableByName("Puff")->AsShaderResource()->SetResource(puff_.Get());
-    e.viewProj = fx->GetVariableByName("ViewProj")->AsMatrix();
-    e.eye = fx->GetVariableByName("Eye")->AsVector();
-    if (!layout_ && !CreateLayout(fx, error)) return false;
-    if (method.order == oit::DrawOrder::BackToFront && !CreateSortBuffers(error)) return false;
-    effects_.emplace(method.name, std::move(e));
-    return true;
-  }
-
   void Update(DeviceContext* context, bool countLive) override { particles_->Update(context, countLive); }
   uint64_t LiveCount() const override { return particles_->liveCount(); }
 
   bool Draw(DeviceContext* ctx, const oit::MethodInfo& method, const Camera& camera, const char* pass,
             oit::DrawOrder order, std::string* error) override {
-    SmokeEffect& e = effects_.at(method.name);
-    fx::EffectPass* p = FindPass(e.effect.Get(), nullptr, pass, error);
+    fx::EffectPass* p = PassForFrame(method, camera, pass, error);
     if (!p) return false;
-    SetCamera(e, camera);
-    e.effect->GetVariableByName("Particles")->AsShaderResource()->SetResource(particles_->currentRawView());
     Buffer* input = particles_->current();
     UINT sortedCount = 0;
     if (order == oit::DrawOrder::BackToFront) input = SortBackToFront(ctx, camera, &sortedCount);
@@ -145,38 +114,26 @@ class Smoke final : public TranslucentObject {
   }
 
 
+ private:
+  EffectDefines Defines() const override {
+    if (fire_) return {{"FIRE", "1"}};
+    return {};
+  }
+
+  bool Configure(fx::Effect& effect, const oit::MethodInfo& method, std::string* error) override {
+    const ParticleSettings& ps = particles_->settings();
+    effect.GetVariableByName("Seconds")->AsScalar()->SetFloat(ps.secondsPerUpdate);
+    SetVector(effect.GetVariableByName("Acceleration"), ps.acceleration);
+    effect.GetVariableByName("Size")->AsScalar()->SetFloat(ps.size);
+    effect.GetVariableByName("Flame")->AsScalar()->SetFloat(fire_ ? 1.0f : 0.0f);
+    effect.GetVariableByName("Puff")->AsShaderResource()->SetResource(puff_.Get());
+    return method.order != oit::DrawOrder::BackToFront || CreateSortBuffers(error);
+  }
+
   // ShadeTriangle reads the particles by index from the buffer the frame drew (the
   // deferred passes draw in submission order).
-  bool DrawFullscreen(DeviceContext* ctx, const oit::MethodInfo& method, const Camera& camera,
-                      const oit::FrameDesc& frame, const char* pass, std::string* error) override {
-    SmokeEffect& e = effects_.at(method.name);
-    SetCamera(e, camera);
-    e.effect->GetVariableByName("Particles")->AsShaderResource()->SetResource(particles_->currentRawView());
-    return DrawFullscreenPass(ctx, e.effect.Get(), frame, pass, error);
-  }
-
- private:
-  static void SetCamera(SmokeEffect& e, const Camera& camera) {
-    e.viewProj->SetMatrixTranspose(&camera.viewProj[0][0]);  // GLM stores columns: FX11's row-major, transposed
-    const float eye[4] = {camera.eye.x, camera.eye.y, camera.eye.z, 0};
-    e.eye->SetFloatVector(eye);
-    SetInverseViewProj(e.effect.Get(), camera);
-  }
-
-  bool CreateLayout(fx::Effect* effect, std::string* error) {
-    fx::PASS_DESC desc;
-    const INPUT_ELEMENT_DESC elements[] = {
-        {"ORIGIN", 0, DXGI_FORMAT_R32G32B32_FLOAT, 0, 0, INPUT_PER_VERTEX_DATA, 0},
-        {"VELOCITY", 0, DXGI_FORMAT_R32G32B32_FLOAT, 0, 12, INPUT_PER_VERTEX_DATA, 0},
-        {"SEEDAGE", 0, DXGI_FORMAT_R32G32_UINT, 0, 24, INPUT_PER_VERTEX_DATA, 0},
-        {"KINDLIFE", 0, DXGI_FORMAT_R32G32_UINT, 0, 32, INPUT_PER_VERTEX_DATA, 0}};
-    if (FAILED(effect->GetTechniqueByIndex(0)->GetPassByIndex(0)->GetDesc(&desc)) ||
-        FAILED(setup_.device->CreateInputLayout(elements, 4, desc.pIAInputSignature, desc.IAInputSignatureSize,
-                                                layout_.GetAddressOf()))) {
-      *error = "smoke: creating the billboard input layout failed";
-      return false;
-    }
-    return true;
+  void SetFrameVariables(fx::Effect& effect) override {
+    effect.GetVariableByName("Particles")->AsShaderResource()->SetResource(particles_->currentRawView());
   }
 
   // The staging copy the particles are read back into and the vertex buffer of their sorted copy.
@@ -206,19 +163,15 @@ class Smoke final : public TranslucentObject {
       live.assign(data, data + std::min<uint64_t>(particles_->liveCount(), particles_->capacity()));
       ctx->Unmap(staging_.Get(), 0);
     }
-    const glm::vec3 forward =
-        glm::normalize(glm::vec3(camera.viewProj[0][3], camera.viewProj[1][3], camera.viewProj[2][3]));  // w row
     std::vector<float> depth(live.size());
     for (size_t i = 0; i < live.size(); ++i) {
       const ParticleData& p = live[i];
       float t = p.seedAge[1] * ps.secondsPerUpdate;
       glm::vec3 c = 0.5f * t * t * ps.acceleration + t * glm::vec3(p.velocity[0], p.velocity[1], p.velocity[2]) +
                     glm::vec3(p.origin[0], p.origin[1], p.origin[2]);
-      depth[i] = glm::dot(c - camera.eye, forward);
+      depth[i] = ViewDepth(camera, c);
     }
-    std::vector<uint32_t> order(live.size());
-    std::iota(order.begin(), order.end(), 0u);
-    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return depth[a] > depth[b]; });
+    const std::vector<uint32_t> order = BackToFrontOrder(depth);
     std::vector<ParticleData> sorted(particles_->capacity());
     for (size_t i = 0; i < order.size(); ++i) sorted[i] = live[order[i]];
     ctx->UpdateSubresource(sorted_.Get(), 0, nullptr, sorted.data(), 0, 0);
@@ -226,13 +179,10 @@ class Smoke final : public TranslucentObject {
     return sorted_.Get();
   }
 
-  ObjectSetup setup_;
   bool fire_;
   std::unique_ptr<ParticleSystem> particles_;
   ComPtr<ShaderResourceView> puff_;
-  ComPtr<InputLayout> layout_;
   ComPtr<Buffer> staging_, sorted_;
-  std::map<std::string, SmokeEffect> effects_;  // by method name
 };
 
 }  // namespace

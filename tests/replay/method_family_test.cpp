@@ -51,6 +51,7 @@ TEST_F(MethodFamilyTest, NeedsAreDescribedInWords) {
   EXPECT_EQ(DescribeNeeds(0), "nothing beyond D3D11.0");
   EXPECT_EQ(DescribeNeeds(kNeedsPixelShaderUavs | kNeedsMsaa), "pixel-shader UAVs, MSAA");
   EXPECT_EQ(DescribeNeeds(kNeedsFloat32Blend | kNeedsCompute), "float32 blending, compute");
+  EXPECT_EQ(DescribeNeeds(kNeedsDualSourceBlend), "dual-source blending");
 }
 
 // Each method's passes, as Method::PassNames says, are the passes the frame applies

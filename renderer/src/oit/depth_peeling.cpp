@@ -162,7 +162,8 @@ std::unique_ptr<Method> CreateDepthPeeling(const MethodInfo& info, const MethodS
 
 }  // namespace
 
-extern const MethodInfo kDepthPeeling{"depth-peeling", "oit/depth_peeling.fxh", 0, DrawOrder::AsSubmitted,
+extern const MethodInfo kDepthPeeling{"depth-peeling", "oit/depth_peeling.fxh", kNeedsDualSourceBlend,
+                                      DrawOrder::AsSubmitted,
                                       "depth peeling: N exact layers composited back to front (document 002)",
                                       CreateDepthPeeling};
 

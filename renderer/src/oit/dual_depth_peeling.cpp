@@ -134,7 +134,8 @@ std::unique_ptr<Method> CreateDualDepthPeeling(const MethodInfo& info, const Met
 }  // namespace
 
 extern const MethodInfo kDualDepthPeeling{
-    "dual-depth-peeling", "oit/dual_depth_peeling.fxh", kNeedsFloat32Blend, DrawOrder::AsSubmitted,
+    "dual-depth-peeling", "oit/dual_depth_peeling.fxh", kNeedsFloat32Blend | kNeedsDualSourceBlend,
+    DrawOrder::AsSubmitted,
     "dual depth peeling: the N/2 nearest and farthest layers, 2 a pass, coloured transmission through "
     "dual-source blending (Bavoil & Myers 2008)",
     CreateDualDepthPeeling};

@@ -43,7 +43,8 @@ std::string DescribeNeeds(uint32_t needs) {
   } kNames[] = {{kNeedsPixelShaderUavs, "pixel-shader UAVs"},
                 {kNeedsMsaa, "MSAA"},
                 {kNeedsFloat32Blend, "float32 blending"},
-                {kNeedsCompute, "compute"}};
+                {kNeedsCompute, "compute"},
+                {kNeedsDualSourceBlend, "dual-source blending"}};
   std::string text;
   for (const auto& n : kNames)
     if (needs & n.need) text += (text.empty() ? "" : ", ") + std::string(n.text);

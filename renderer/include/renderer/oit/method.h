@@ -31,6 +31,8 @@ enum Need : uint32_t {
   kNeedsMsaa = 1u << 1,             // multisampled targets read per sample
   kNeedsFloat32Blend = 1u << 2,     // blending into R32_FLOAT-class targets (optional in Vulkan)
   kNeedsCompute = 1u << 3,          // compute-shader passes
+  // Dual-source blending (SRC1_COLOR): D3D11.0 has it, Vulkan makes it optional (dualSrcBlend).
+  kNeedsDualSourceBlend = 1u << 4,
 };
 // "pixel-shader UAVs, MSAA", or "nothing beyond D3D11.0" for 0.
 std::string DescribeNeeds(uint32_t needs);

@@ -140,7 +140,7 @@ int RunOne(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
 
 int ListMethods() {
   for (const MethodInfo* m : renderer::oit::Methods())
-    std::printf("%-18s needs: %-24s %s\n", m->name, renderer::oit::DescribeNeeds(m->needs).c_str(), m->summary);
+    std::printf("%-18s needs: %-44s %s\n", m->name, renderer::oit::DescribeNeeds(m->needs).c_str(), m->summary);
   return 0;
 }
 

@@ -14,14 +14,6 @@ namespace {
 
 using namespace rhi;
 
-struct Particle {
-  float origin[3];
-  float velocity[3];
-  uint32_t seedAge[2];
-  uint32_t kindLife[2];
-};
-static_assert(sizeof(Particle) == kParticleStride);
-
 void SetVector(fx::EffectVariable* v, const glm::vec3& x) {
   const float f[4] = {x.x, x.y, x.z, 0};
   v->AsVector()->SetFloatVector(f);
@@ -90,7 +82,7 @@ bool ParticleSystem::Initialize(Device* device, const ParticleSettings& settings
     return fail("CreateInputLayout");
 
   // The init buffer: the emitters, spread on a circle, drawn with Draw on the first update.
-  std::vector<Particle> emitters(rule.emitters);
+  std::vector<ParticleRecord> emitters(rule.emitters);
   for (uint32_t e = 0; e < rule.emitters; ++e) {
     float angle = 6.2831853f * e / std::max(1u, rule.emitters);
     emitters[e] = {{settings.emitterCenter.x + settings.emitterRadius * std::cos(angle), settings.emitterCenter.y,
@@ -99,7 +91,7 @@ bool ParticleSystem::Initialize(Device* device, const ParticleSettings& settings
                    {e, 0},
                    {0, 0}};
   }
-  BUFFER_DESC initDesc{static_cast<UINT>(emitters.size() * sizeof(Particle)), USAGE_IMMUTABLE, BIND_VERTEX_BUFFER,
+  BUFFER_DESC initDesc{static_cast<UINT>(emitters.size() * sizeof(ParticleRecord)), USAGE_IMMUTABLE, BIND_VERTEX_BUFFER,
                        0, 0, 0};
   SUBRESOURCE_DATA initData{emitters.data(), 0, 0};
   if (FAILED(device->CreateBuffer(&initDesc, &initData, emitters_.GetAddressOf()))) return fail("the emitter buffer");

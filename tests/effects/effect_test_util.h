@@ -39,19 +39,20 @@ class EffectTest : public rhi_test::GpuTest {
         << errors;
     return effect;
   }
-  // A RWStructuredBuffer<uint/float> of n elements with its UAV.
+  // A RWStructuredBuffer<uint/float> of n elements with its UAV (uavFlags:
+  // BUFFER_UAV_FLAG_APPEND / _COUNTER for a hidden counter).
   struct Rw {
     rhi::ComPtr<rhi::Buffer> buffer;
     rhi::ComPtr<rhi::UnorderedAccessView> uav;
   };
-  Rw MakeRw(UINT n) {
+  Rw MakeRw(UINT n, UINT uavFlags = 0) {
     Rw rw;
     rw.buffer = MakeBuffer(rhi::BIND_UNORDERED_ACCESS, nullptr, n * 4, rhi::USAGE_DEFAULT,
                            rhi::RESOURCE_MISC_BUFFER_STRUCTURED, 4);
     rhi::UNORDERED_ACCESS_VIEW_DESC desc{};
     desc.Format = rhi::DXGI_FORMAT_UNKNOWN;
     desc.ViewDimension = rhi::UAV_DIMENSION_BUFFER;
-    desc.Buffer = {0, n, 0};
+    desc.Buffer = {0, n, uavFlags};
     EXPECT_EQ(device->CreateUnorderedAccessView(rw.buffer.Get(), &desc, rw.uav.GetAddressOf()), rhi::S_OK);
     return rw;
   }

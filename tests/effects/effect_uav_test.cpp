@@ -42,17 +42,6 @@ class EffectUavTest : public EffectTest {
     SetViewport(kSize, kSize);
     context->IASetPrimitiveTopology(rhi::PRIMITIVE_TOPOLOGY_TRIANGLELIST);
   }
-  Rw MakeAppend(UINT n) {
-    Rw rw;
-    rw.buffer = MakeBuffer(rhi::BIND_UNORDERED_ACCESS, nullptr, n * 4, rhi::USAGE_DEFAULT,
-                           rhi::RESOURCE_MISC_BUFFER_STRUCTURED, 4);
-    rhi::UNORDERED_ACCESS_VIEW_DESC desc{};
-    desc.Format = rhi::DXGI_FORMAT_UNKNOWN;
-    desc.ViewDimension = rhi::UAV_DIMENSION_BUFFER;
-    desc.Buffer = {0, n, rhi::BUFFER_UAV_FLAG_APPEND};
-    EXPECT_EQ(device->CreateUnorderedAccessView(rw.buffer.Get(), &desc, rw.uav.GetAddressOf()), rhi::S_OK);
-    return rw;
-  }
   void SetUav(fx::Effect* effect, const char* name, rhi::UnorderedAccessView* uav) {
     ASSERT_EQ(effect->GetVariableByName(name)->AsUnorderedAccessView()->SetUnorderedAccessView(uav), rhi::S_OK);
   }
@@ -65,7 +54,7 @@ TEST_F(EffectUavTest, PixelShaderUavsBindThroughTheOutputMerger) {
   Rw counts = MakeRw(kSize * kSize);
   const UINT zero[4] = {};
   context->ClearUnorderedAccessViewUint(counts.uav.Get(), zero);
-  Rw fragments = MakeAppend(2 * kSize * kSize);
+  Rw fragments = MakeRw(2 * kSize * kSize, rhi::BUFFER_UAV_FLAG_APPEND);
   SetUav(effect.Get(), "Counts", counts.uav.Get());
   SetUav(effect.Get(), "Fragments", fragments.uav.Get());
   fx::EffectPass* pass = effect->GetTechniqueByIndex(0)->GetPassByIndex(0);

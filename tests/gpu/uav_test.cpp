@@ -663,10 +663,8 @@ struct OutputMergerCase {
   const char* reason;
 };
 
-class OutputMergerRefusalTest : public UavTest, public ::testing::WithParamInterface<OutputMergerCase> {};
-
-TEST_P(OutputMergerRefusalTest, IsRefusedWithTheReason) {
-  const OutputMergerCase& c = GetParam();
+// An RGBA8 texture bound both as a render target and as a UAV, with a view of each.
+void MakeTargetAndUav(rhi::Device* device, ComPtr<RenderTargetView>* rtv, ComPtr<UnorderedAccessView>* uav) {
   TEXTURE2D_DESC desc{};
   desc.Width = desc.Height = kSize;
   desc.MipLevels = desc.ArraySize = 1;
@@ -675,10 +673,17 @@ TEST_P(OutputMergerRefusalTest, IsRefusedWithTheReason) {
   desc.BindFlags = BIND_RENDER_TARGET | BIND_UNORDERED_ACCESS;
   ComPtr<Texture2D> both;
   ASSERT_EQ(device->CreateTexture2D(&desc, nullptr, both.GetAddressOf()), S_OK);
+  ASSERT_EQ(device->CreateRenderTargetView(both.Get(), nullptr, rtv->GetAddressOf()), S_OK);
+  ASSERT_EQ(device->CreateUnorderedAccessView(both.Get(), nullptr, uav->GetAddressOf()), S_OK);
+}
+
+class OutputMergerRefusalTest : public UavTest, public ::testing::WithParamInterface<OutputMergerCase> {};
+
+TEST_P(OutputMergerRefusalTest, IsRefusedWithTheReason) {
+  const OutputMergerCase& c = GetParam();
   ComPtr<RenderTargetView> bothRtv;
   ComPtr<UnorderedAccessView> bothUav;
-  ASSERT_EQ(device->CreateRenderTargetView(both.Get(), nullptr, bothRtv.GetAddressOf()), S_OK);
-  ASSERT_EQ(device->CreateUnorderedAccessView(both.Get(), nullptr, bothUav.GetAddressOf()), S_OK);
+  ASSERT_NO_FATAL_FAILURE(MakeTargetAndUav(device.Get(), &bothRtv, &bothUav));
   UintTexture counts = MakeUintTexture(0);
 
   RenderTargetView* rtvs[8] = {bothRtv.Get()};
@@ -706,18 +711,9 @@ INSTANTIATE_TEST_SUITE_P(
 // The views a call keeps meet the rules too: new render targets may neither
 // reach a kept UAV's slot nor be a kept UAV's resource.
 TEST_F(UavTest, KeptViewsAreCheckedAgainstNewOnes) {
-  TEXTURE2D_DESC desc{};
-  desc.Width = desc.Height = kSize;
-  desc.MipLevels = desc.ArraySize = 1;
-  desc.Format = DXGI_FORMAT_R8G8B8A8_UNORM;
-  desc.SampleDesc.Count = 1;
-  desc.BindFlags = BIND_RENDER_TARGET | BIND_UNORDERED_ACCESS;
-  ComPtr<Texture2D> both;
-  ASSERT_EQ(device->CreateTexture2D(&desc, nullptr, both.GetAddressOf()), S_OK);
   ComPtr<RenderTargetView> bothRtv;
   ComPtr<UnorderedAccessView> bothUav;
-  ASSERT_EQ(device->CreateRenderTargetView(both.Get(), nullptr, bothRtv.GetAddressOf()), S_OK);
-  ASSERT_EQ(device->CreateUnorderedAccessView(both.Get(), nullptr, bothUav.GetAddressOf()), S_OK);
+  ASSERT_NO_FATAL_FAILURE(MakeTargetAndUav(device.Get(), &bothRtv, &bothUav));
   BindUav(bothUav.Get());
 
   RenderTargetView* two[] = {target_.rtv.Get(), nullptr};

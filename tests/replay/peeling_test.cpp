@@ -29,6 +29,7 @@
 #include <numeric>
 
 #include "gpu_test.h"
+#include "method_lookup.h"
 #include "renderer/meshes.h"
 #include "renderer/translucency.h"
 #include "rhi/trace.h"
@@ -39,8 +40,6 @@ namespace {
 using renderer::Translucency;
 using renderer::TranslucencySettings;
 using renderer::oit::MethodInfo;
-
-const MethodInfo& Method(const char* name) { return *renderer::oit::FindMethod(name); }
 
 // One plain pass that counts the translucent samples in front of the opaque depth:
 // `alpha`'s pass (LESS against the opaque depth, no depth writes) in an occlusion query.

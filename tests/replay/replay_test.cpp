@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "gpu_test.h"
+#include "method_lookup.h"
 #include "renderer/particle_rule.h"
 #include "renderer/translucency.h"
 
@@ -13,8 +14,6 @@ namespace {
 using renderer::Translucency;
 using renderer::TranslucencySettings;
 using renderer::oit::MethodInfo;
-
-const MethodInfo& Method(const char* name) { return *renderer::oit::FindMethod(name); }
 
 class ReplayTest : public GpuTest {
  protected:

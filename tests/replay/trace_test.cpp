@@ -11,6 +11,7 @@
 
 #include "fx/effect.h"
 #include "gpu_test.h"
+#include "method_lookup.h"
 #include "renderer/effect_files.h"
 #include "renderer/translucency.h"
 #include "rhi/trace.h"
@@ -21,8 +22,6 @@ namespace {
 using renderer::Translucency;
 using renderer::TranslucencySettings;
 using renderer::oit::MethodInfo;
-
-const MethodInfo& Method(const char* name) { return *renderer::oit::FindMethod(name); }
 
 // Document 000's methods and the technique the paper's passes belong to (fire: OVER is additive).
 struct PaperMethod {

@@ -80,4 +80,14 @@ class ParticleSystem {
 // Bytes per particle in the stream-output buffers.
 inline constexpr uint32_t kParticleStride = 40;
 
+// A particle as the stream-output buffers hold it (shaders_hlsl/particle.hlsli), for
+// the CPU code that fills or reads them.
+struct ParticleRecord {
+  float origin[3];
+  float velocity[3];
+  uint32_t seedAge[2];   // x: seed, y: age in updates
+  uint32_t kindLife[2];  // x: 0 emitter / 1 smoke; y: lifetime in updates
+};
+static_assert(sizeof(ParticleRecord) == kParticleStride);
+
 }  // namespace renderer

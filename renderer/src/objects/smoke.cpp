@@ -18,19 +18,6 @@ namespace {
 
 using namespace rhi;
 
-struct ParticleData {
-  float origin[3];
-  float velocity[3];
-  uint32_t seedAge[2];
-  uint32_t kindLife[2];
-};
-static_assert(sizeof(ParticleData) == kParticleStride);
-
-void SetVector(fx::EffectVariable* v, const glm::vec3& x) {
-  const float f[4] = {x.x, x.y, x.z, 0};
-  v->AsVector()->SetFloatVector(f);
-}
-
 // The puff: alpha = density (a soft disc with value noise), rgb = a normal map of a
 // bumpy hemisphere (n * 0.5 + 0.5, y up in texture space).
 std::vector<uint8_t> PuffTexels(uint32_t size, uint32_t seed) {
@@ -123,7 +110,8 @@ class Smoke final : public EffectObject {
   bool Configure(fx::Effect& effect, const oit::MethodInfo& method, std::string* error) override {
     const ParticleSettings& ps = particles_->settings();
     effect.GetVariableByName("Seconds")->AsScalar()->SetFloat(ps.secondsPerUpdate);
-    SetVector(effect.GetVariableByName("Acceleration"), ps.acceleration);
+    const float acceleration[4] = {ps.acceleration.x, ps.acceleration.y, ps.acceleration.z, 0};
+    effect.GetVariableByName("Acceleration")->AsVector()->SetFloatVector(acceleration);
     effect.GetVariableByName("Size")->AsScalar()->SetFloat(ps.size);
     effect.GetVariableByName("Flame")->AsScalar()->SetFloat(fire_ ? 1.0f : 0.0f);
     effect.GetVariableByName("Puff")->AsShaderResource()->SetResource(puff_.Get());
@@ -155,24 +143,24 @@ class Smoke final : public EffectObject {
   Buffer* SortBackToFront(DeviceContext* ctx, const Camera& camera, UINT* count) {
     const ParticleSettings& ps = particles_->settings();
     ctx->CopyResource(staging_.Get(), particles_->current());
-    std::vector<ParticleData> live;
+    std::vector<ParticleRecord> live;
     MAPPED_SUBRESOURCE mapped{};
     if (SUCCEEDED(ctx->Map(staging_.Get(), 0, MAP_READ, 0, &mapped))) {
-      const auto* data = static_cast<const ParticleData*>(mapped.pData);
+      const auto* data = static_cast<const ParticleRecord*>(mapped.pData);
       // SO_STATISTICS of this frame's update (the frame driver counts for back-to-front methods).
       live.assign(data, data + std::min<uint64_t>(particles_->liveCount(), particles_->capacity()));
       ctx->Unmap(staging_.Get(), 0);
     }
     std::vector<float> depth(live.size());
     for (size_t i = 0; i < live.size(); ++i) {
-      const ParticleData& p = live[i];
+      const ParticleRecord& p = live[i];
       float t = p.seedAge[1] * ps.secondsPerUpdate;
       glm::vec3 c = 0.5f * t * t * ps.acceleration + t * glm::vec3(p.velocity[0], p.velocity[1], p.velocity[2]) +
                     glm::vec3(p.origin[0], p.origin[1], p.origin[2]);
       depth[i] = ViewDepth(camera, c);
     }
     const std::vector<uint32_t> order = BackToFrontOrder(depth);
-    std::vector<ParticleData> sorted(particles_->capacity());
+    std::vector<ParticleRecord> sorted(particles_->capacity());
     for (size_t i = 0; i < order.size(); ++i) sorted[i] = live[order[i]];
     ctx->UpdateSubresource(sorted_.Get(), 0, nullptr, sorted.data(), 0, 0);
     *count = UINT(order.size());

@@ -20,6 +20,7 @@
 //       1, 2, 4 and 8 layers and the exact composite, every layer peeled), every
 //       method's RMSE / PSNR against the sorted reference, and Fig. 6's against the exact one
 //   replay --bench [--scene demo|paper|heavy|complexity] [--frames N] [--warmup N] [--size WxH]
+//                  [--fragment-sizing exact|late]
 //       per registered method: FPS and frame ms from the GPU (TIMESTAMP queries inside a
 //       TIMESTAMP_DISJOINT query, median over N frames), per-pass GPU ms, CPU ms per frame
 //       (RenderFrame's recording and submission, median), wall ms; WBOIT/alpha ratio.
@@ -30,6 +31,9 @@
 //       A method that refuses a scene is skipped with its reason; a method of more than two
 //       passes also gets a line of its passes' GPU ms by name.
 //       --warmup defaults to the updates the smoke needs to reach its steady state.
+//   --fragment-sizing (--demo, --bench): how prefix-sum sizes its fragment buffer: exact
+//       (default: each frame's own total, the CPU waits for it) or late (earlier frames'
+//       totals, no wait; a frame that outgrows the buffer loses fragments, reported).
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb_image_write.h>
 
@@ -69,6 +73,7 @@ struct Options {
   int warmup = -1;
   uint32_t peelLayers = renderer::oit::kDefaultPeelLayers;
   int layer = -1;  // --layer: the layer shown alone
+  renderer::oit::FragmentStorage fragmentStorage;  // --fragment-sizing
 };
 
 std::unique_ptr<renderer::Translucency> Make(rhi::Device* device, rhi::DeviceContext* ctx,
@@ -123,6 +128,7 @@ int RunOne(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
   s.width = o.width, s.height = o.height;
   s.peelLayers = o.peelLayers;
   s.showLayer = o.layer;
+  s.fragmentStorage = o.fragmentStorage;
   const int frames = Frames(o, o.demo);
   auto t = Make(device, ctx, s);
   std::filesystem::create_directories(o.out);
@@ -372,6 +378,7 @@ int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
               device->GetAdapterName(), frames);
   for (const BenchCase& bc : BenchCases(o)) {
     renderer::TranslucencySettings base = bc.settings;
+    base.fragmentStorage = o.fragmentStorage;
     base.timestamps = true;
     base.countParticles = false;
     const bool particles = base.scene == "smoke" || base.scene == "fire";
@@ -442,13 +449,17 @@ int main(int argc, char** argv) {
       o.allFrames = true;
     } else if (a == "--peel-layers") {
       o.peelLayers = uint32_t(std::atoi(next().c_str()));
+    } else if (a == "--fragment-sizing") {
+      const std::string v = next();
+      if (v != "exact" && v != "late") Fail("--fragment-sizing takes exact or late");
+      o.fragmentStorage.exactSizing = v == "exact";
     } else if (a == "--layer") {
       o.layer = std::atoi(next().c_str());
       if (o.layer < 0) Fail("--layer takes a layer number, 0 the nearest");
     } else {
       Fail("unknown argument " + a +
            "\nusage: replay --demo SCENE --method METHOD [--frames N] [--size WxH] [--peel-layers N] [--layer K]"
-           " --out DIR"
+           " [--fragment-sizing exact|late] --out DIR"
            "\n       replay --list-methods | --list-scenes"
            "\n       replay --figures --out DIR\n       replay --bench [--scene demo|paper|heavy|complexity] [--frames N] [--warmup N]"
            "\n  scenes: " + renderer::SceneNames() + "\n  methods: " + renderer::oit::MethodNames());

@@ -4,15 +4,16 @@
 // offset, and resolve: sort, shade (deferred), composite.
 //
 // Sizing the fragment buffer. The document sizes it to the frame's total, which
-// the CPU only has after reading it back: FragmentStorage::exactSizing does
-// that each frame (the CPU waits for the count and scan to finish, so CPU and
-// GPU work in turn every frame). The default reads the totals back without
-// waiting (LateReadback, a frame or so late) and keeps a capacity with
-// hysteresis: grown to 1.5x a total that exceeded it, shrunk to 1.5x the
-// largest recent total after kShrinkFrames frames under a quarter of it. The
+// the CPU only has after reading it back: FragmentStorage::exactSizing (the
+// default) does that each frame (the CPU waits for the count and scan to finish,
+// so CPU and GPU work in turn every frame). The other sizing reads the totals
+// back without waiting (LateReadback, a frame or so late) and keeps a capacity
+// with hysteresis: grown to 1.5x a total that exceeded it, shrunk to 1.5x the
+// largest recent total after kShrinkFrames frames under a quarter of it. Its
 // first frame, which has no history, is sized exactly. A frame whose total
-// exceeds the capacity stores the fragments that fit; the ones past it are
-// counted (LostFragments, when the total comes back) and the buffer grows.
+// exceeds the capacity stores the fragments that fit (which ones is a race); the
+// ones past it are counted (LostFragments, when the total comes back) and the
+// buffer grows.
 #include "renderer/oit/prefix_sum.h"
 
 #include <algorithm>
@@ -283,7 +284,7 @@ extern const MethodInfo kPrefixSum{"prefix-sum",
                                    DrawOrder::AsSubmitted,
                                    "exact: per-pixel counts, a prefix sum, an 8-byte (id, depth) fragment "
                                    "buffer, deferred shading "
-                                   "(document 004); one object; buffer sized from earlier frames' totals",
+                                   "(document 004); one object; buffer sized to each frame's total",
                                    CreatePrefixSum};
 
 }  // namespace renderer::oit

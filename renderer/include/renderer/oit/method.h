@@ -122,10 +122,13 @@ struct MethodInfo;
 inline constexpr uint32_t kDefaultPeelLayers = 8;
 // How the fragment-buffer methods (prefix-sum, linked-list) size their storage.
 struct FragmentStorage {
-  // prefix-sum: false (the default) sizes the fragment buffer from earlier frames'
-  // totals, read back a frame late without waiting, grown with hysteresis; true sizes
-  // it to each frame's own total, read back in the frame (the CPU waits for the GPU).
-  bool exactSizing = false;
+  // prefix-sum: true (the default, document 004's way) sizes the fragment buffer to
+  // each frame's own total, read back in the frame (the CPU waits for the count and
+  // scan): exact, and deterministic. false sizes it from earlier frames' totals, read
+  // back a frame late without waiting and grown with hysteresis: a frame whose total
+  // outgrows the buffer loses fragments (counted in LostFragments), and which ones
+  // depends on the GPU's scheduling.
+  bool exactSizing = true;
   // linked-list: the node pool's capacity, in nodes per pixel of the frame.
   uint32_t nodesPerPixel = 16;
 };

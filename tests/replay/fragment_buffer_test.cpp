@@ -148,10 +148,10 @@ const MethodInfo kRecord{"record",
 struct SceneCase {
   const char* scene;
   int frames;  // the frame recorded and compared is the last
-  // Of ShadeTriangle against Shade: 1/255; the billboards 1.5/255, where the
-  // puff's density is steepest and the rasterizer's interpolated uv
-  // (lavapipe: 1.4/255 at worst) differs from the exact point where the pixel's
-  // ray meets the billboard.
+  // Of ShadeTriangle against Shade: 1/255; the billboards 2/255, where the
+  // puff's density is steepest and the rasterizer's interpolated uv differs from
+  // the exact point where the pixel's ray meets the billboard (at worst 1.4/255 on
+  // lavapipe, 1.9/255 on an NVIDIA H100).
   float shadeTolerance;
 };
 
@@ -321,7 +321,7 @@ TEST_P(FragmentBufferTest, TheVisibilityBufferShadesTheOpaquePixelsAsForwardShad
 // fragments (prefix-sum's counts say how many) composites the same image as
 // prefix-sum, within one 8-bit step where both shade alike (ShadeTriangle against
 // Shade: 1/255) and two on the billboards, whose deferred shading differs from the
-// rasterizer's interpolation by up to shadeTolerance (1.5/255: the test above).
+// rasterizer's interpolation by up to shadeTolerance (2/255: the test above).
 // Except where two fragments of a pixel lie at the same depth: a peel keeps what lies
 // strictly behind the last layer, so depth peeling keeps one of them (document 002's
 // method cannot part coplanar surfaces; the smoke's newborn particles share their
@@ -368,8 +368,8 @@ TEST_P(FragmentBufferTest, DepthPeelingWithEnoughLayersEqualsPrefixSum) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, FragmentBufferTest,
-                         ::testing::Values(SceneCase{"shards", 1, 1 / 255.0f}, SceneCase{"smoke", 20, 1.5f / 255},
-                                           SceneCase{"fire", 20, 1.5f / 255}, SceneCase{"complexity", 1, 1 / 255.0f},
+                         ::testing::Values(SceneCase{"shards", 1, 1 / 255.0f}, SceneCase{"smoke", 20, 2 / 255.0f},
+                                           SceneCase{"fire", 20, 2 / 255.0f}, SceneCase{"complexity", 1, 1 / 255.0f},
                                            SceneCase{"teapot", 1, 1 / 255.0f}),
                          [](const ::testing::TestParamInfo<SceneCase>& info) { return std::string(info.param.scene); });
 

@@ -278,6 +278,33 @@ void EffectParser::Blank(size_t firstToken, size_t lastToken) {
   }
 }
 
+namespace {
+
+std::string LineDirective(const SourceLocation& where) {
+  std::string s = "#line " + std::to_string(where.line) + " \"";
+  for (char c : where.file) {
+    if (c == '"' || c == '\\') s += '\\';
+    s += c;
+  }
+  return s + "\"\n";
+}
+
+}  // namespace
+
+void EffectParser::Hoist(size_t first, size_t last, size_t before) {
+  size_t at = t_[before].offset;
+  while (at > 0 && hlsl_[at - 1] != '\n') --at;
+  std::string text = LineDirective(t_[first].where) + Spell(first, last + 1) + "\n" + LineDirective(t_[before].where);
+  hoists_.emplace_back(at, std::move(text));
+  Blank(first, last);
+}
+
+std::string EffectParser::ApplyHoists(std::string text) const {
+  // In reverse, so earlier offsets stay valid; equal offsets keep source order.
+  for (auto it = hoists_.rbegin(); it != hoists_.rend(); ++it) text.insert(it->first, it->second);
+  return text;
+}
+
 // ---------------------------------------------------------------------------
 // Top level
 
@@ -292,7 +319,7 @@ Result<EffectAst> EffectParser::Run() {
     globals_->buffer.defaults.resize(globals_->buffer.size);
     ast_.cbuffers.insert(ast_.cbuffers.begin(), std::move(globals_->buffer));
   }
-  ast_.hlsl = std::move(hlsl_) + VariantSource();
+  ast_.hlsl = ApplyHoists(std::move(hlsl_)) + VariantSource();
   return std::move(ast_);
 }
 
@@ -347,6 +374,7 @@ void EffectParser::ApplyPragmas() {
 // [shared] cbuffer|tbuffer Name [: register(bN)] { declarations } [;]
 void EffectParser::ParseBuffer() {
   BufferBuilder b;
+  b.firstToken = pos_;
   if (IsIdent(0, "shared")) {
     b.buffer.shared = true;
     Blank(pos_, pos_);
@@ -681,7 +709,14 @@ void EffectParser::ParseDeclarators(const DeclSpec& spec, BufferBuilder* buffer)
     Blank(spec.start, pos_ - 1);
     return;
   }
-  bool uniform = kind == Kind::Numeric && !spec.modifiers.count("static") && !spec.modifiers.count("groupshared");
+  bool isStatic = spec.modifiers.count("static") != 0;
+  if (buffer && kind == Kind::Numeric && isStatic) {
+    // fxc: a static inside a cbuffer is no member of it, only scoped there;
+    // glslang takes no such declaration, so it moves out, before the cbuffer.
+    Hoist(spec.start, pos_ - 1, buffer->firstToken);
+    return;
+  }
+  bool uniform = kind == Kind::Numeric && !isStatic && !spec.modifiers.count("groupshared");
   for (size_t i : spec.modifierTokens) {
     const std::string& m = t_[i].text;
     if (m == "shared" || (uniform && (m == "const" || m == "extern"))) Blank(i, i);

@@ -73,6 +73,7 @@ struct Declarator {
 struct BufferBuilder {
   ConstantBuffer buffer;
   uint32_t used = 0;  // bytes taken so far
+  size_t firstToken = 0;  // `cbuffer` (or `shared`): where its static declarations move to
 };
 
 // A shader named or built by an expression in a pass or a shader variable.
@@ -114,6 +115,10 @@ class EffectParser {
 
   // ---- HLSL editing ----
   void Blank(size_t firstToken, size_t lastToken);  // inclusive
+  // Moves the declaration [first, last] to just before the line of token
+  // `before`, between #line directives, so every position stays true.
+  void Hoist(size_t first, size_t last, size_t before);
+  std::string ApplyHoists(std::string text) const;
 
   // ---- declarations (effect_parser.cpp) ----
   void ParseTopLevel();
@@ -189,6 +194,7 @@ class EffectParser {
   std::map<std::string, std::vector<FunctionInfo>> functions_;
   std::map<std::string, std::string> variants_;  // "Function(args)" -> fx_variant_N
   std::vector<std::string> variantCode_;
+  std::vector<std::pair<size_t, std::string>> hoists_;  // (offset in hlsl_, text inserted there)
 };
 
 bool EqualsIgnoreCase(std::string_view a, std::string_view b);

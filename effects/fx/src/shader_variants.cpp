@@ -8,7 +8,10 @@
 //     float4 fx_variant_0(PSIn input) : SV_Target { return PSMain(input, (true), (3)); }
 // It keeps PSMain's other parameters with their semantics, so its signature
 // is what fxc would have compiled. The `uniform` keywords themselves are blanked
-// from the HLSL: the original function becomes an ordinary one.
+// from the HLSL: the original function becomes an ordinary one. An overloaded
+// function (`PS()` and `PS(uniform int index)`) always goes through a wrapper,
+// even without uniform arguments: glslang finds no entry point by an
+// overloaded name, and the wrapper's call picks the overload.
 #include "effect_parser_impl.h"
 
 namespace fx {
@@ -95,33 +98,42 @@ bool EffectParser::IsIdentAt(size_t index, std::string_view name) const {
 std::string EffectParser::EntryPointFor(const Token& at, const std::string& function, std::vector<std::string>& args) {
   auto it = functions_.find(function);
   if (it == functions_.end()) Fatal(at, "unknown shader function '" + function + "'");
-  // The first overload whose uniform parameters the arguments can bind.
+  // fxc picks the overload by the uniform arguments: one whose uniform
+  // parameters they fill exactly, else the first that defaults fill up.
   const FunctionInfo* chosen = nullptr;
   size_t overload = 0;
   std::vector<const FunctionInfo::Param*> uniforms;
   std::string problem;
-  for (size_t i = 0; i < it->second.size() && !chosen; ++i) {
-    const FunctionInfo& f = it->second[i];
-    uniforms.clear();
+  auto uniformsOf = [](const FunctionInfo& f) {
+    std::vector<const FunctionInfo::Param*> u;
     for (const FunctionInfo::Param& p : f.params) {
-      if (p.uniform) uniforms.push_back(&p);
+      if (p.uniform) u.push_back(&p);
     }
-    if (args.size() > uniforms.size()) {
-      problem = "'" + function + "' has " + std::to_string(uniforms.size()) + " uniform parameter(s), but " +
+    return u;
+  };
+  for (size_t i = 0; i < it->second.size() && !chosen; ++i) {
+    if (uniformsOf(it->second[i]).size() == args.size()) chosen = &it->second[i], overload = i;
+  }
+  for (size_t i = 0; i < it->second.size() && !chosen; ++i) {
+    std::vector<const FunctionInfo::Param*> u = uniformsOf(it->second[i]);
+    if (args.size() > u.size()) {
+      problem = "'" + function + "' has " + std::to_string(u.size()) + " uniform parameter(s), but " +
                 std::to_string(args.size()) + " argument(s) are given";
       continue;
     }
-    auto missing = std::find_if(uniforms.begin() + static_cast<std::ptrdiff_t>(args.size()), uniforms.end(),
+    auto missing = std::find_if(u.begin() + static_cast<std::ptrdiff_t>(args.size()), u.end(),
                                 [](const FunctionInfo::Param* p) { return p->defaultValue.empty(); });
-    if (missing != uniforms.end()) {
+    if (missing != u.end()) {
       problem = "no value for uniform parameter '" + (*missing)->name + "' of '" + function + "'";
       continue;
     }
-    chosen = &f;
+    chosen = &it->second[i];
     overload = i;
   }
   if (!chosen) Fatal(at, problem);
-  if (uniforms.empty()) return function;
+  uniforms = uniformsOf(*chosen);
+  // glslang finds no entry point by an overloaded name: overloads go through a wrapper too.
+  if (uniforms.empty() && it->second.size() == 1) return function;
   for (size_t i = args.size(); i < uniforms.size(); ++i) args.push_back(uniforms[i]->defaultValue);
 
   std::string key = function + "#" + std::to_string(overload) + "(" + Join(args, ",") + ")";

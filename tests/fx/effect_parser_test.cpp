@@ -438,6 +438,49 @@ TEST(EffectParser, VariantsKeepAttributesAndNonUniformParameters) {
       << ast.hlsl;
 }
 
+// fxc: a static inside a cbuffer is no member (the layout skips it) but sizes
+// arrays; the HLSL gets it before the cbuffer, between #line directives.
+TEST(EffectParser, CbufferStaticsAreHoistedOutOfTheLayout) {
+  EffectAst ast = MustParse(
+      "cbuffer PerFrame\n"
+      "{\n"
+      "    float4 tint;\n"
+      "    static const int kCount = 4;\n"
+      "    float4 items[kCount];\n"
+      "};\n");
+  ASSERT_EQ(ast.cbuffers.size(), 1u);
+  const ConstantBuffer& cb = ast.cbuffers[0];
+  ASSERT_EQ(cb.variables.size(), 2u);
+  EXPECT_EQ(cb.variables[1].name, "items");
+  EXPECT_EQ(cb.variables[1].offset, 16u);
+  EXPECT_EQ(cb.variables[1].type.arrayDims, (std::vector<uint32_t>{4}));
+  EXPECT_EQ(cb.size, 80u);
+  EXPECT_NE(ast.hlsl.find("#line 4 \"test.fx\"\nstatic const int kCount = 4;\n#line 1 \"test.fx\"\ncbuffer PerFrame"),
+            std::string::npos)
+      << ast.hlsl;
+  EXPECT_EQ(ast.hlsl.find("static", ast.hlsl.find("cbuffer")), std::string::npos) << ast.hlsl;
+}
+
+// PS() and PS(uniform int) in one file: each CompileShader picks its overload
+// by the uniform arguments, and both compile through a wrapper (glslang finds
+// no entry point by an overloaded name).
+TEST(EffectParser, OverloadsArePickedByTheirUniformArguments) {
+  EffectAst ast = MustParse(
+      "float4 PS() : SV_Target { return 1; }\n"
+      "float4 PS(uniform int index, uniform float scale = 2) : SV_Target { return index * scale; }\n"
+      "float4 PS(uniform int index) : SV_Target { return index; }\n"
+      "PixelShader a = CompileShader(ps_5_0, PS());\n"
+      "PixelShader b = CompileShader(ps_5_0, PS(3));\n"
+      "PixelShader c = CompileShader(ps_5_0, PS(3, 4));\n");
+  ASSERT_EQ(ast.shaders.size(), 3u);
+  EXPECT_EQ(ast.shaders[0].entryPoint, "fx_variant_0");
+  EXPECT_NE(ast.hlsl.find("fx_variant_0()"), std::string::npos);
+  EXPECT_NE(ast.hlsl.find("return PS();"), std::string::npos) << ast.hlsl;
+  EXPECT_EQ(ast.shaders[1].uniformArgs, (std::vector<std::string>{"3"}));  // the exact overload, not the defaulted one
+  EXPECT_NE(ast.hlsl.find("// fx_variant_1: PS(3)\n"), std::string::npos) << ast.hlsl;
+  EXPECT_EQ(ast.shaders[2].uniformArgs, (std::vector<std::string>{"3", "4"}));
+}
+
 TEST(EffectParser, UavsAndTemplatedResources) {
   EffectAst ast = MustParse(
       "struct Particle { float3 pos; };\n"

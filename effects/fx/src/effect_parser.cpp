@@ -54,11 +54,28 @@ constexpr ResourceName kResourceNames[] = {
     {"ConsumeStructuredBuffer", ResourceKind::ConsumeStructuredBuffer},
 };
 
+// fxc's object keywords are case-insensitive, except `texture` (lowercase only).
 std::optional<ResourceKind> ResourceKindOf(const std::string& type) {
   for (const ResourceName& r : kResourceNames) {
-    if (r.name == type) return r.kind;
+    if (r.kind == ResourceKind::Texture ? r.name == type : EqualsIgnoreCase(r.name, type)) return r.kind;
   }
   return std::nullopt;
+}
+
+// The spelling glslang knows of an object type fxc takes in any case, e.g.
+// "Texture2d" -> "Texture2D"; `type` itself when it is no such keyword.
+std::string_view CanonicalObjectType(std::string_view type) {
+  static constexpr std::string_view kOthers[] = {
+      "SamplerState", "SamplerComparisonState", "sampler", "sampler1D", "sampler2D", "sampler3D", "samplerCUBE",
+      "BlendState", "DepthStencilState", "RasterizerState", "VertexShader", "HullShader", "DomainShader",
+      "GeometryShader", "PixelShader", "ComputeShader"};
+  for (const ResourceName& r : kResourceNames) {
+    if (r.kind != ResourceKind::Texture && EqualsIgnoreCase(r.name, type)) return r.name;
+  }
+  for (std::string_view name : kOthers) {
+    if (EqualsIgnoreCase(name, type)) return name;
+  }
+  return type;
 }
 
 std::optional<ShaderStage> ShaderStageOfType(const std::string& type) {
@@ -148,6 +165,14 @@ EffectParser::EffectParser(PreprocessedSource source) : hlsl_(std::move(source.t
     } else {
       t_.push_back(std::move(t));
     }
+  }
+  // fxc takes `texture2D` for Texture2D; glslang only the canonical spelling.
+  for (Token& t : t_) {
+    if (t.kind != TokenKind::Identifier) continue;
+    std::string_view canonical = CanonicalObjectType(t.text);
+    if (canonical == t.text) continue;
+    hlsl_.replace(t.offset, canonical.size(), canonical);  // only the case differs
+    t.text = canonical;
   }
   end_.kind = TokenKind::Invalid;
   end_.text = "end of file";
@@ -704,8 +729,10 @@ void EffectParser::ParseDeclarators(const DeclSpec& spec, BufferBuilder* buffer)
     Fatal(Peek(), "expected ';' after '" + d.name + "', found '" + Peek().text + "'");
   }
   // Effect-only declarations vanish from the HLSL; the others lose what glslang rejects.
+  // FX10's untyped `texture` only names a resource for the effect: shaders sample typed ones.
+  bool untypedTexture = kind == Kind::Resource && *resource == ResourceKind::Texture;
   if (kind == Kind::Blend || kind == Kind::DepthStencil || kind == Kind::Rasterizer || kind == Kind::Shader ||
-      kind == Kind::String) {
+      kind == Kind::String || untypedTexture) {
     Blank(spec.start, pos_ - 1);
     return;
   }

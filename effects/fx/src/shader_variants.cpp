@@ -54,7 +54,8 @@ void EffectParser::ParseFunction(const DeclSpec& spec, size_t attributesStart) {
   }
   if (Accept(":")) f.semantic = ExpectIdentifier("a semantic").text;
   if (IsPunct(0, "{")) {
-    SkipBalanced();
+    size_t bodyOpen = pos_;
+    RefuseD3D9TextureFunctions(bodyOpen, SkipBalanced());
     functions_[f.name].push_back(std::move(f));
   } else {
     Expect(";", "after the function declaration");
@@ -89,6 +90,26 @@ void EffectParser::ParseParameter(FunctionInfo& f, size_t begin, size_t end) {
   if (stop > begin && t_[stop - 1].kind == TokenKind::Identifier) p.name = t_[stop - 1].text;
   if (p.name.empty()) Fatal(t_[begin], "cannot read the parameter '" + p.text + "'");
   f.params.push_back(std::move(p));
+}
+
+// tex2D(s, uv) and its kin sample D3D9's combined samplers, which shader model
+// 4 and 5 only take under fxc's /Gec (backwards compatibility) and D3D11
+// cannot bind: a clear refusal instead of glslang compiling a combined sampler.
+void EffectParser::RefuseD3D9TextureFunctions(size_t begin, size_t end) {
+  for (size_t i = begin; i < end; ++i) {
+    const Token& t = t_[i];
+    if (t.kind != TokenKind::Identifier || !IsPunctAt(i + 1, "(") || t.text.rfind("tex", 0) != 0) continue;
+    std::string_view rest = std::string_view(t.text).substr(3);
+    for (std::string_view dim : {"1D", "2D", "3D", "CUBE"}) {
+      if (!rest.starts_with(dim)) continue;
+      std::string_view suffix = rest.substr(dim.size());
+      if (suffix.empty() || suffix == "bias" || suffix == "grad" || suffix == "lod" || suffix == "proj") {
+        Error(t, "'" + t.text + "' is a D3D9 texture function, which fx_5_0 shaders do not take: declare a Texture" +
+                     (dim == "CUBE" ? std::string("Cube") : std::string(dim)) + " and a SamplerState and call " +
+                     "texture.Sample(sampler, uv)");
+      }
+    }
+  }
 }
 
 bool EffectParser::IsIdentAt(size_t index, std::string_view name) const {

@@ -628,11 +628,16 @@ std::vector<Annotation> EffectParser::ParseAnnotations() {
     if (Accept(";")) continue;
     Annotation a;
     if (IsIdent(0, "const")) ++pos_;
-    a.type = ExpectIdentifier("an annotation type").text;
+    const Token& typeToken = ExpectIdentifier("an annotation type");
+    a.type = typeToken.text;
     const Token& name = ExpectIdentifier("an annotation name");
     a.name = name.text;
     a.where = name.where;
-    while (IsPunct(0, "[")) SkipBalanced();
+    std::vector<uint32_t> dims;
+    while (IsPunct(0, "[")) {
+      size_t open = pos_, close = SkipBalanced();
+      dims.push_back(EvaluateUInt(open + 1, close, "array size", 1, kMaxConstantBufferBytes));
+    }
     Expect("=", "in the annotation");
     size_t begin = pos_, end = FindAtDepthZero({";"});
     if (a.type == "string") {
@@ -646,6 +651,13 @@ std::vector<Annotation> EffectParser::ParseAnnotations() {
       }
     } else {
       a.values = Evaluate(begin, end, "annotation value").components;
+      std::optional<VariableType> type = types_.Resolve(a.type, {}, rowMajorDefault_);
+      if (!type) Fatal(typeToken, "unknown annotation type '" + a.type + "'");
+      type->arrayDims = dims;
+      if (std::optional<std::string> e = ComputeLayout(*type)) Fatal(typeToken, *e);
+      a.valueType = *type;
+      a.bytes.resize(AlignUp16(type->size));
+      if (std::optional<std::string> e = WriteInitializer(*type, a.values, a.bytes, 0)) Error(name, *e);
     }
     pos_ = end;
     Expect(";", "after the annotation");

@@ -134,6 +134,14 @@ HRESULT TechniqueImpl::GetDesc(TECHNIQUE_DESC* pDesc) {
   return rhi::S_OK;
 }
 
+EffectVariable* TechniqueImpl::GetAnnotationByIndex(UINT Index) {
+  return effect_ ? effect_->Annotation(ast_->annotations, Index) : VariableImpl::Invalid();
+}
+
+EffectVariable* TechniqueImpl::GetAnnotationByName(LPCSTR Name) {
+  return effect_ ? effect_->Annotation(ast_->annotations, Name) : VariableImpl::Invalid();
+}
+
 EffectPass* TechniqueImpl::GetPassByIndex(UINT Index) {
   return Index < passes_.size() ? &passes_[Index] : static_cast<EffectPass*>(InvalidPass());
 }

@@ -303,8 +303,6 @@ void EffectParser::Blank(size_t firstToken, size_t lastToken) {
   }
 }
 
-namespace {
-
 std::string LineDirective(const SourceLocation& where) {
   std::string s = "#line " + std::to_string(where.line) + " \"";
   for (char c : where.file) {
@@ -313,8 +311,6 @@ std::string LineDirective(const SourceLocation& where) {
   }
   return s + "\"\n";
 }
-
-}  // namespace
 
 void EffectParser::Hoist(size_t first, size_t last, size_t before) {
   size_t at = t_[before].offset;

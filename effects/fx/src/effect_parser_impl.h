@@ -200,6 +200,9 @@ class EffectParser {
 
 bool EqualsIgnoreCase(std::string_view a, std::string_view b);
 
+// `#line N "file"` and a newline: what follows is reported at `where`'s line.
+std::string LineDirective(const SourceLocation& where);
+
 // The text of a string literal token, with C escapes resolved.
 std::string UnquoteString(const std::string& literal);
 

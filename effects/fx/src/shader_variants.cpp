@@ -3,9 +3,9 @@
 // fxc compiles `CompileShader(ps_5_0, PSMain(true, 3))` by treating the listed
 // arguments as compile-time values of PSMain's uniform parameters. glslang has
 // no such notion, so each distinct argument list gets a wrapper appended to the
-// HLSL:
-//     [attributes of PSMain]
-//     float4 fx_variant_0(PSIn input) : SV_Target { return PSMain(input, (true), (3)); }
+// HLSL, its call on the CompileShader's line (#line), the arguments at their column:
+//     [attributes of PSMain] float4 fx_variant_0(PSIn input) : SV_Target {
+//                                      return PSMain(input, true, (1 + 2)); }
 // It keeps PSMain's other parameters with their semantics, so its signature
 // is what fxc would have compiled. The `uniform` keywords themselves are blanked
 // from the HLSL: the original function becomes an ordinary one. An overloaded
@@ -161,22 +161,30 @@ std::string EffectParser::EntryPointFor(const Token& at, const std::string& func
   auto found = variants_.find(key);
   if (found != variants_.end()) return found->second;
   std::string name = "fx_variant_" + std::to_string(variants_.size());
-  std::vector<std::string> params, call;
-  size_t next = 0;
+  std::vector<std::string> params, call_args;
+  size_t next = 0, firstUniform = 0;
   for (const FunctionInfo::Param& p : chosen->params) {
+    if (p.uniform && next == 0) firstUniform = call_args.size();
     if (p.uniform) {
-      call.push_back("(" + args[next++] + ")");
+      const std::string& a = args[next++];
+      bool oneToken = std::all_of(a.begin(), a.end(), [](char c) { return IsIdentifierChar(c) || c == '.'; });
+      call_args.push_back(oneToken ? a : "(" + a + ")");
     } else {
       params.push_back(p.text);
-      call.push_back(p.name);
+      call_args.push_back(p.name);
     }
   }
-  std::string code = "// " + name + ": " + function + "(" + Join(args, ", ") + ")\n";
-  if (!chosen->attributes.empty()) code += chosen->attributes + "\n";
+  // The call goes on the CompileShader's line, so that an error in an argument points there.
+  std::string code = "// " + name + ": " + function + "(" + Join(args, ", ") + ")\n" + LineDirective(at.where);
+  if (!chosen->attributes.empty()) code += chosen->attributes + " ";
   code += chosen->returnType + " " + name + "(" + Join(params, ", ") + ")";
   if (!chosen->semantic.empty()) code += " : " + chosen->semantic;
-  code += "\n{\n    " + std::string(chosen->returnType == "void" ? "" : "return ") + function + "(" +
-          Join(call, ", ") + ");\n}\n";
+  // The first uniform argument goes where CompileShader has it (right after `function(`).
+  std::string call = (chosen->returnType == "void" ? "" : "return ") + function + "(" + Join(call_args, ", ") + "); }";
+  size_t firstArg = call.find('(') + 1;
+  if (!uniforms.empty()) firstArg = call.find(call_args[firstUniform], firstArg);
+  size_t column = static_cast<size_t>(std::max(1, at.where.column)) - 1 + function.size() + 1;
+  code += " {\n" + LineDirective(at.where) + std::string(column > firstArg ? column - firstArg : 0, ' ') + call + "\n";
   variantCode_.push_back(std::move(code));
   variants_.emplace(std::move(key), name);
   return name;
@@ -184,7 +192,7 @@ std::string EffectParser::EntryPointFor(const Token& at, const std::string& func
 
 std::string EffectParser::VariantSource() const {
   if (variantCode_.empty()) return "";
-  return "\n#line 1 \"fx_variants\"\n" + Join(variantCode_, "");
+  return "\n" + Join(variantCode_, "");
 }
 
 }  // namespace fx

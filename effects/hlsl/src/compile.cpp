@@ -38,11 +38,13 @@ constexpr char kPreambleName[] = "<defines>";
 
 bool IsIdentifierChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
 
-// The text of line `line` of `file` as glslang numbers it: in `text` (named
+// The texts of line `line` of `file` as glslang numbers it: in `text` (named
 // `textName`) after its #line directives, which the effect front end writes
-// where an #include starts and ends. nullopt when `text` has no such line.
-std::optional<std::string> LogicalLine(const std::string& text, const std::string& textName, const std::string& file,
-                                       int line) {
+// where an #include starts and ends and before its generated entry points
+// (so one logical line may have several texts).
+std::vector<std::string> LogicalLines(const std::string& text, const std::string& textName, const std::string& file,
+                                      int line) {
+  std::vector<std::string> found;
   static const std::regex kLineDirective(R"re(^\s*#\s*line\s+(\d{1,9})(?:\s+"((?:[^"\\]|\\.)*)")?\s*$)re");
   std::istringstream in(text);
   std::string current, name = textName;
@@ -58,10 +60,10 @@ std::optional<std::string> LogicalLine(const std::string& text, const std::strin
       }
       continue;
     }
-    if (number == line && name == file) return current;
+    if (number == line && name == file) found.push_back(current);
     ++number;
   }
-  return std::nullopt;
+  return found;
 }
 
 // 1-based column of the n-th (0-based) occurrence of token on the line, as a
@@ -86,16 +88,16 @@ int RecoverColumn(const Diagnostic& d, const std::vector<Diagnostic>& earlier, c
   static const std::regex kQuoted(R"(^'([^']*)' :)");
   std::smatch quoted;
   if (d.line <= 0 || !std::regex_search(d.message, quoted, kQuoted)) return 0;
-  std::optional<std::string> lineText;
-  for (const auto& [name, text] : files) {
-    if ((lineText = LogicalLine(text, name, d.file, d.line))) break;
-  }
-  if (!lineText) return 0;
   const std::string token = quoted[1];
   const auto same = std::count_if(earlier.begin(), earlier.end(), [&](const Diagnostic& e) {
     return e.file == d.file && e.line == d.line && e.message.starts_with(quoted[0].str());
   });
-  return FindColumn(*lineText, token, static_cast<int>(same));
+  for (const auto& [name, text] : files) {
+    for (const std::string& lineText : LogicalLines(text, name, d.file, d.line)) {
+      if (int column = FindColumn(lineText, token, static_cast<int>(same))) return column;
+    }
+  }
+  return 0;
 }
 
 // Unlocated entries (link errors) are attributed to mainFile.

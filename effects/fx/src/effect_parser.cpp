@@ -54,28 +54,25 @@ constexpr ResourceName kResourceNames[] = {
     {"ConsumeStructuredBuffer", ResourceKind::ConsumeStructuredBuffer},
 };
 
-// fxc's object keywords are case-insensitive, except `texture` (lowercase only).
-std::optional<ResourceKind> ResourceKindOf(const std::string& type) {
-  for (const ResourceName& r : kResourceNames) {
-    if (r.kind == ResourceKind::Texture ? r.name == type : EqualsIgnoreCase(r.name, type)) return r.kind;
-  }
-  return std::nullopt;
-}
-
-// The spelling glslang knows of an object type fxc takes in any case, e.g.
-// "Texture2d" -> "Texture2D"; `type` itself when it is no such keyword.
+// The spelling glslang knows of an object type that fxc takes in any case
+// (D3D9 files write texture2D, textureCUBE), e.g. "texture2D" -> "Texture2D";
+// `type` itself when it is no such keyword. Other type names (Buffer, ...)
+// are case-sensitive, so `buffer` stays a name.
 std::string_view CanonicalObjectType(std::string_view type) {
-  static constexpr std::string_view kOthers[] = {
-      "SamplerState", "SamplerComparisonState", "sampler", "sampler1D", "sampler2D", "sampler3D", "samplerCUBE",
-      "BlendState", "DepthStencilState", "RasterizerState", "VertexShader", "HullShader", "DomainShader",
-      "GeometryShader", "PixelShader", "ComputeShader"};
-  for (const ResourceName& r : kResourceNames) {
-    if (r.kind != ResourceKind::Texture && EqualsIgnoreCase(r.name, type)) return r.name;
-  }
-  for (std::string_view name : kOthers) {
+  static constexpr std::string_view kAnyCase[] = {
+      "Texture1D", "Texture2D", "Texture3D", "TextureCube", "SamplerState", "SamplerComparisonState",
+      "sampler1D", "sampler2D", "sampler3D", "samplerCUBE"};
+  for (std::string_view name : kAnyCase) {
     if (EqualsIgnoreCase(name, type)) return name;
   }
   return type;
+}
+
+std::optional<ResourceKind> ResourceKindOf(const std::string& type) {
+  for (const ResourceName& r : kResourceNames) {
+    if (r.name == type) return r.kind;
+  }
+  return std::nullopt;
 }
 
 std::optional<ShaderStage> ShaderStageOfType(const std::string& type) {

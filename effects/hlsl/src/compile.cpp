@@ -106,9 +106,18 @@ void ParseInfoLog(const std::string& log, const std::string& mainFile, const Sou
   static const std::regex kEntry(R"(^(ERROR|WARNING|INTERNAL ERROR|UNIMPLEMENTED): (.*)$)");
   static const std::regex kLocated(R"(^(.*?):(\d{1,9}): (.*)$)");
   static const std::regex kSummary(R"(^\d+ compilation errors\.)");
+  // "file(12): error at column 40, HLSL parsing failed.": where the parse
+  // stopped, the column for that line's errors whose token was not found.
+  static const std::regex kParseStop(R"(^(.*)\((\d{1,9})\): error at column (\d{1,9}), HLSL parsing failed\.)");
   std::istringstream in(log);
   for (std::string line; std::getline(in, line);) {
-    std::smatch entry, located;
+    std::smatch entry, located, stop;
+    if (std::regex_search(line, stop, kParseStop)) {
+      for (Diagnostic& e : errors) {
+        if (e.column == 0 && e.file == stop[1].str() && e.line == std::stoi(stop[2])) e.column = std::stoi(stop[3]);
+      }
+      continue;
+    }
     if (!std::regex_match(line, entry, kEntry)) continue;
     const std::string body = entry[2];
     if (std::regex_search(body, kSummary)) continue;  // "1 compilation errors.  No code generated."

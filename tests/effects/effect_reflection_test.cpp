@@ -18,13 +18,19 @@ std::string StringOf(fx::EffectVariable* v) {
 fx::EFFECT_SHADER_DESC ShaderDescOf(const fx::PASS_SHADER_DESC& pass) {
   fx::EFFECT_SHADER_DESC desc;
   EXPECT_TRUE(pass.pShaderVariable && pass.pShaderVariable->IsValid());
-  if (pass.pShaderVariable) EXPECT_EQ(pass.pShaderVariable->GetShaderDesc(pass.ShaderIndex, &desc), rhi::S_OK);
+  if (pass.pShaderVariable) {
+    EXPECT_EQ(pass.pShaderVariable->GetShaderDesc(pass.ShaderIndex, &desc), rhi::S_OK);
+  }
   return desc;
 }
 
 TEST_F(EffectTest, AnnotationsOfTechniquesPassesAndVariables) {
   auto effect = Load(kConstructs + "/groups_annotations_strings.fx");
   ASSERT_TRUE(effect);
+  fx::EFFECT_DESC ed;
+  ASSERT_EQ(effect->GetDesc(&ed), rhi::S_OK);
+  EXPECT_EQ(ed.Techniques, 3u);
+  EXPECT_EQ(ed.Groups, 1u);  // fxgroup Lighting
   fx::EffectTechnique* forward = effect->GetTechniqueByName("Forward");
   fx::TECHNIQUE_DESC td;
   ASSERT_EQ(forward->GetDesc(&td), rhi::S_OK);

@@ -132,8 +132,15 @@ std::string EffectParser::EntryPointFor(const Token& at, const std::string& func
     }
     return u;
   };
-  for (size_t i = 0; i < it->second.size() && !chosen; ++i) {
-    if (uniformsOf(it->second[i]).size() == args.size()) chosen = &it->second[i], overload = i;
+  for (size_t i = 0; i < it->second.size(); ++i) {
+    if (uniformsOf(it->second[i]).size() != args.size()) continue;
+    if (chosen) {
+      Fatal(at, "ambiguous call to '" + function + "': the overloads at line " + std::to_string(chosen->where.line) +
+                    " and line " + std::to_string(it->second[i].where.line) + " both take " +
+                    std::to_string(args.size()) + " uniform argument(s)");
+    }
+    chosen = &it->second[i];
+    overload = i;
   }
   for (size_t i = 0; i < it->second.size() && !chosen; ++i) {
     std::vector<const FunctionInfo::Param*> u = uniformsOf(it->second[i]);

@@ -12,7 +12,7 @@
 //    rhi::Device::CreateInputLayout matches against;
 //  - EFFECT_SHADER_DESC::pBytecode and pInputSignature are SPIR-V;
 //  - no ID3DX11EffectGroup (fxgroup techniques are found by name like the
-//    others), interfaces, classes or effect pools.
+//    others; EFFECT_DESC::Groups counts them), interfaces, classes or effect pools.
 // Variables, techniques and passes are owned by the Effect (never released by
 // the caller), as in FX11. Methods of an invalid object (IsValid() == FALSE)
 // fail with E_FAIL and return invalid objects.

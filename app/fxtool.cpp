@@ -292,6 +292,23 @@ std::string ShaderLine(const fx::CompiledShader& sh) {
   return s;
 }
 
+// `<indent>@Name = value` lines, one per annotation.
+void PrintAnnotations(const std::vector<fx::Annotation>& annotations, const char* indent) {
+  for (const fx::Annotation& a : annotations) {
+    std::string value;
+    if (a.type == "string") {
+      value = "\"" + a.stringValue + "\"";
+    } else {
+      for (size_t i = 0; i < a.values.size(); ++i) {
+        char number[32];
+        std::snprintf(number, sizeof number, "%g", a.values[i]);
+        value += (i ? ", " : "") + std::string(number);
+      }
+    }
+    std::printf("%s@%s %s = %s\n", indent, a.type.c_str(), a.name.c_str(), value.c_str());
+  }
+}
+
 // Compiles every distinct (entry, profile) of the effect; prints errors. Returns the failure count.
 int CompileAll(const Options& o, const fx::EffectAst& ast, std::map<int, std::string>* status) {
   int failures = 0;
@@ -339,8 +356,10 @@ int Info(const Options& o) {
     std::printf("technique%d %s", t.version, t.name.c_str());
     if (!t.group.empty()) std::printf(" (fxgroup %s)", t.group.c_str());
     std::printf("  [%s]\n", Where(t.where).c_str());
+    PrintAnnotations(t.annotations, "  ");
     for (const fx::Pass& p : t.passes) {
       std::printf("  pass %s\n", p.name.empty() ? "(unnamed)" : p.name.c_str());
+      PrintAnnotations(p.annotations, "    ");
       for (const fx::PassAssignment& a : p.assignments) {
         if (auto* s = std::get_if<fx::ShaderAssignment>(&a.value)) {
           if (s->shader < 0) {
@@ -368,12 +387,14 @@ int Info(const Options& o) {
     for (const fx::ConstantVariable& v : cb.variables) {
       std::printf("  %s %s offset=%u size=%u%s%s\n", TypeText(v.type).c_str(), v.name.c_str(), v.offset, v.type.size,
                   v.semantic.empty() ? "" : (" semantic=" + v.semantic).c_str(), v.hasInitializer ? " (initialized)" : "");
+      PrintAnnotations(v.annotations, "    ");
     }
   }
   for (const fx::ResourceVariable& r : ast.resources) {
     std::printf("resource %s%s%s%s\n", r.name.c_str(), r.templateArgs.empty() ? "" : (" <" + r.templateArgs + ">").c_str(),
                 fx::IsUnorderedAccess(r.kind) ? " (UAV)" : "",
                 r.reg ? (" register=" + std::string(1, r.reg->kind) + std::to_string(r.reg->index)).c_str() : "");
+    PrintAnnotations(r.annotations, "  ");
   }
   for (const fx::SamplerVariable& s : ast.samplers)
     std::printf("sampler %s%s\n", s.name.c_str(), s.comparison ? " (comparison)" : "");
@@ -381,7 +402,10 @@ int Info(const Options& o) {
     std::printf("blendstate %s%s\n", v.name.c_str(), v.descs.size() > 1 ? ("[" + std::to_string(v.descs.size()) + "]").c_str() : "");
   for (const fx::DepthStencilStateVariable& v : ast.depthStencilStates) std::printf("depthstencilstate %s\n", v.name.c_str());
   for (const fx::RasterizerStateVariable& v : ast.rasterizerStates) std::printf("rasterizerstate %s\n", v.name.c_str());
-  for (const fx::StringVariable& v : ast.strings) std::printf("string %s\n", v.name.c_str());
+  for (const fx::StringVariable& v : ast.strings) {
+    std::printf("string %s\n", v.name.c_str());
+    PrintAnnotations(v.annotations, "  ");
+  }
   if (failures) {
     std::fprintf(stderr, "fxtool: %d shader(s) failed to compile\n", failures);
     return 1;

@@ -168,17 +168,17 @@ std::string EffectParser::EntryPointFor(const Token& at, const std::string& func
   auto found = variants_.find(key);
   if (found != variants_.end()) return found->second;
   std::string name = "fx_variant_" + std::to_string(variants_.size());
-  std::vector<std::string> params, call_args;
+  std::vector<std::string> params, callArgs;
   size_t next = 0, firstUniform = 0;
   for (const FunctionInfo::Param& p : chosen->params) {
-    if (p.uniform && next == 0) firstUniform = call_args.size();
+    if (p.uniform && next == 0) firstUniform = callArgs.size();
     if (p.uniform) {
       const std::string& a = args[next++];
       bool oneToken = std::all_of(a.begin(), a.end(), [](char c) { return IsIdentifierChar(c) || c == '.'; });
-      call_args.push_back(oneToken ? a : "(" + a + ")");
+      callArgs.push_back(oneToken ? a : "(" + a + ")");
     } else {
       params.push_back(p.text);
-      call_args.push_back(p.name);
+      callArgs.push_back(p.name);
     }
   }
   // The call goes on the CompileShader's line, so that an error in an argument points there.
@@ -187,9 +187,9 @@ std::string EffectParser::EntryPointFor(const Token& at, const std::string& func
   code += chosen->returnType + " " + name + "(" + Join(params, ", ") + ")";
   if (!chosen->semantic.empty()) code += " : " + chosen->semantic;
   // The first uniform argument goes where CompileShader has it (right after `function(`).
-  std::string call = (chosen->returnType == "void" ? "" : "return ") + function + "(" + Join(call_args, ", ") + "); }";
+  std::string call = (chosen->returnType == "void" ? "" : "return ") + function + "(" + Join(callArgs, ", ") + "); }";
   size_t firstArg = call.find('(') + 1;
-  if (!uniforms.empty()) firstArg = call.find(call_args[firstUniform], firstArg);
+  if (!uniforms.empty()) firstArg = call.find(callArgs[firstUniform], firstArg);
   size_t column = static_cast<size_t>(std::max(1, at.where.column)) - 1 + function.size() + 1;
   code += " {\n" + LineDirective(at.where) + std::string(column > firstArg ? column - firstArg : 0, ' ') + call + "\n";
   variantCode_.push_back(std::move(code));

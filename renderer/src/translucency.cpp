@@ -214,7 +214,8 @@ Translucency::MethodState* Translucency::Prepare(const oit::MethodInfo& info) {
                                {settings_.width, settings_.height, 1},
                                settings_.peelLayers,
                                uint32_t(m.objects.size()),
-                               settings_.fragmentStorage};
+                               settings_.fragmentStorage,
+                               settings_.minDepthSlope};
   state.method = info.create(info, setup, &why);
   if (!state.method) return error_ = std::string(info.name) + ": " + why, nullptr;
   if (settings_.showLayer >= 0 && !state.method->ShowLayer(uint32_t(settings_.showLayer)))
@@ -239,9 +240,11 @@ const oit::Method* Translucency::MethodInstance(const oit::MethodInfo& method) c
 Camera Translucency::CameraForFrame(uint32_t n) const {
   Camera c;
   c.eye = ScriptedEye(scene_->cameraTarget, scene_->cameraRadius, n);
+  c.nearPlane = settings_.nearPlane > 0 ? settings_.nearPlane : scene_->nearPlane;
+  c.farPlane = settings_.farPlane > 0 ? settings_.farPlane : scene_->farPlane;
   glm::mat4 view = glm::lookAtLH(c.eye, scene_->cameraTarget, glm::vec3(0, 1, 0));
-  glm::mat4 proj =
-      glm::perspectiveLH_ZO(glm::radians(50.0f), float(settings_.width) / float(settings_.height), 0.1f, 40.0f);
+  glm::mat4 proj = glm::perspectiveLH_ZO(glm::radians(50.0f), float(settings_.width) / float(settings_.height),
+                                         c.nearPlane, c.farPlane);
   c.viewProj = proj * view;
   return c;
 }
@@ -268,7 +271,8 @@ bool Translucency::RenderFrame(const oit::MethodInfo& method) {
   if (timed) m.Stamp(*state, 2);
   FrameGeometry geometry(m, method, camera_, {settings_.width, settings_.height, 1});
   FrameMarks marks(ctx, timed ? &state->stamps : nullptr, m.firstPassStatistics.Get());
-  state->method->Render({ctx, {m.frameRtv.Get(), m.dsv.Get()}, &geometry, &marks});
+  state->method->Render(
+      {ctx, {m.frameRtv.Get(), m.dsv.Get()}, &geometry, &marks, camera_.nearPlane, camera_.farPlane});
   marks.Finish();
   if (timed) {
     ctx->End(m.disjoint.Get());

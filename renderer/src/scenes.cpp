@@ -248,9 +248,9 @@ bool BuildMagicCircle(rhi::Device* device, const TranslucencySettings& s,
 }
 
 const SceneInfo kCubes{"cubes", "document 003's overlapping translucent coloured cubes (near 0.25, far 5000)",
-                       {0.0f, 0.7f, 0.4f}, 3.6f, 1, Studio, BuildCubes, kThesisNear, kThesisFar};
+                       {0.0f, 0.7f, 0.4f}, 2.6f, 1, Studio, BuildCubes, kThesisNear, kThesisFar};
 const SceneInfo kIceInCup{"ice-in-cup", "document 003's ice in a cup: translucent cubes just inside a glass",
-                          {0.0f, 0.5f, 0.0f}, 2.4f, 1, Studio, BuildIceInCup, kThesisNear, kThesisFar};
+                          {0.0f, 0.5f, 0.0f}, 1.6f, 1, Studio, BuildIceInCup, kThesisNear, kThesisFar};
 const SceneInfo kMagicCircle{"magic-circle", "document 003's magic circle 0.001 above a translucent glass floor",
                              {0.0f, 0.4f, 0.0f}, 1.8f, 1, Studio, BuildMagicCircle, kThesisNear, kThesisFar};
 

@@ -35,6 +35,8 @@
 //       A method that refuses a scene is skipped with its reason; a method of more than two
 //       passes also gets a line of its passes' GPU ms by name.
 //       --warmup defaults to the updates the smoke needs to reach its steady state.
+//   --min-depth-slope M (--demo): document 003's m for moment-transparency-mindepth (default 100,
+//       per scene unit of view depth).
 //   --fragment-sizing (--demo, --bench): how prefix-sum sizes its fragment buffer: exact
 //       (default: each frame's own total, the CPU waits for it) or late (earlier frames'
 //       totals, no wait; a frame that outgrows the buffer loses fragments, reported).
@@ -79,6 +81,7 @@ struct Options {
   int layer = -1;  // --layer: the layer shown alone
   renderer::oit::FragmentStorage fragmentStorage;  // --fragment-sizing
   std::string document;  // --figures --document 003: that document's figures alone
+  float minDepthSlope = renderer::oit::kDefaultMinDepthSlope;  // --min-depth-slope: document 003's m
 };
 
 std::unique_ptr<renderer::Translucency> Make(rhi::Device* device, rhi::DeviceContext* ctx,
@@ -134,6 +137,7 @@ int RunOne(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
   s.peelLayers = o.peelLayers;
   s.showLayer = o.layer;
   s.fragmentStorage = o.fragmentStorage;
+  s.minDepthSlope = o.minDepthSlope;
   const int frames = Frames(o, o.demo);
   auto t = Make(device, ctx, s);
   std::filesystem::create_directories(o.out);
@@ -528,13 +532,16 @@ int main(int argc, char** argv) {
       const std::string v = next();
       if (v != "exact" && v != "late") Fail("--fragment-sizing takes exact or late");
       o.fragmentStorage.exactSizing = v == "exact";
+    } else if (a == "--min-depth-slope") {
+      o.minDepthSlope = float(std::atof(next().c_str()));
+      if (!(o.minDepthSlope > 0)) Fail("--min-depth-slope takes a positive m (per scene unit of view depth)");
     } else if (a == "--layer") {
       o.layer = std::atoi(next().c_str());
       if (o.layer < 0) Fail("--layer takes a layer number, 0 the nearest");
     } else {
       Fail("unknown argument " + a +
            "\nusage: replay --demo SCENE --method METHOD [--frames N] [--size WxH] [--peel-layers N] [--layer K]"
-           " [--fragment-sizing exact|late] --out DIR"
+           " [--fragment-sizing exact|late] [--min-depth-slope M] --out DIR"
            "\n       replay --list-methods | --list-scenes"
            "\n       replay --figures [--document 003] --out DIR\n       replay --bench [--scene demo|paper|heavy|complexity] [--frames N] [--warmup N]"
            "\n  scenes: " + renderer::SceneNames() + "\n  methods: " + renderer::oit::MethodNames());

@@ -14,6 +14,7 @@
 // z and z_min are view depths in scene units in both passes (moments.hlsli says why).
 #include "common.fxh"
 #include "moments.hlsli"
+#include "../fullscreen.hlsli"
 
 #ifndef MOMENT_MIN_DEPTH
 #define MOMENT_MIN_DEPTH 0
@@ -125,11 +126,6 @@ float4 PSWeighted(OBJECT_PIXEL p) : SV_Target0 {
 }
 #endif
 
-float4 VSMomentsFullscreen(uint id : SV_VertexID) : SV_Position {
-  float2 uv = float2((id << 1) & 2, id & 2);
-  return float4(uv * float2(2, -2) + float2(-1, 1), 0, 1);
-}
-
 // The weighted average colour with the opacity of everything the pixel holds,
 // 1 - exp(-b0) (MBOIT's composite; Moment Transparency's "final pass").
 float4 PSMomentsCompose(float4 pos : SV_Position) : SV_Target {
@@ -141,7 +137,7 @@ float4 PSMomentsCompose(float4 pos : SV_Position) : SV_Target {
 
 #define MOMENTS_COMPOSE_PASS                                        \
   pass Compose {                                                    \
-    SetVertexShader(CompileShader(vs_5_0, VSMomentsFullscreen()));  \
+    SetVertexShader(CompileShader(vs_5_0, VSFullscreenTriangle())); \
     SetGeometryShader(NULL);                                        \
     SetPixelShader(CompileShader(ps_5_0, PSMomentsCompose()));      \
     SetBlendState(MomentsCompose, float4(0, 0, 0, 0), 0xFFFFFFFF);  \

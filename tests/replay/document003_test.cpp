@@ -1,6 +1,7 @@
 // Document 003 (moment transparency with a minimum-depth correction) against the
-// exact result: prefix-sum (document 004, exact per fragment, itself checked against a
-// CPU composite in fragment_buffer_test.cpp) on the thesis's scenes, at 160x90.
+// exact result: prefix-sum (document 004, exact per fragment; fragment_buffer_test.cpp
+// checks it on these scenes too against a CPU composite of the same fragments, and
+// depth peeling with enough layers against it) on the thesis's scenes, at 160x90.
 // Depth units: z and z_min are view depths in scene units (oit/moments.hlsli); the
 // scenes use the thesis's near 0.25 and far 5000 unless a test changes them.
 #include <cmath>

@@ -253,7 +253,8 @@ Translucency::MethodState* Translucency::Prepare(const oit::MethodInfo& info) {
                                {settings_.width, settings_.height, 1},
                                settings_.peelLayers,
                                uint32_t(m.objects.size()),
-                               settings_.fragmentStorage};
+                               settings_.fragmentStorage,
+                               settings_.minDepthSlope};
   state.method = info.create(info, setup, &why);
   if (!state.method) return error_ = std::string(info.name) + ": " + why, nullptr;
   if (state.method->Opaque() == oit::OpaqueShading::VisibilityBuffer && !PrepareVisibilityBuffer()) return nullptr;
@@ -292,9 +293,11 @@ const oit::Method* Translucency::MethodInstance(const oit::MethodInfo& method) c
 Camera Translucency::CameraForFrame(uint32_t n) const {
   Camera c;
   c.eye = ScriptedEye(scene_->cameraTarget, scene_->cameraRadius, n);
+  c.nearPlane = settings_.nearPlane > 0 ? settings_.nearPlane : scene_->nearPlane;
+  c.farPlane = settings_.farPlane > 0 ? settings_.farPlane : scene_->farPlane;
   glm::mat4 view = glm::lookAtLH(c.eye, scene_->cameraTarget, glm::vec3(0, 1, 0));
-  glm::mat4 proj =
-      glm::perspectiveLH_ZO(glm::radians(50.0f), float(settings_.width) / float(settings_.height), 0.1f, 40.0f);
+  glm::mat4 proj = glm::perspectiveLH_ZO(glm::radians(50.0f), float(settings_.width) / float(settings_.height),
+                                         c.nearPlane, c.farPlane);
   c.viewProj = proj * view;
   return c;
 }
@@ -324,7 +327,8 @@ bool Translucency::RenderFrame(const oit::MethodInfo& method) {
   FrameMarks marks(ctx, timed ? &state->stamps : nullptr, m.firstPassStatistics.Get());
   FrameOpaque opaque(m, camera_, {settings_.width, settings_.height, 1});
   state->method->Render(
-      {ctx, {m.frameRtv.Get(), m.dsv.Get(), m.frameSrv.Get()}, &geometry, &marks, visibility ? &opaque : nullptr});
+      {ctx, {m.frameRtv.Get(), m.dsv.Get(), m.frameSrv.Get()}, &geometry, &marks, visibility ? &opaque : nullptr,
+       camera_.nearPlane, camera_.farPlane});
   marks.Finish();
   if (timed) {
     ctx->End(m.disjoint.Get());

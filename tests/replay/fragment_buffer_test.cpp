@@ -370,8 +370,14 @@ TEST_P(FragmentBufferTest, DepthPeelingWithEnoughLayersEqualsPrefixSum) {
 INSTANTIATE_TEST_SUITE_P(Scenes, FragmentBufferTest,
                          ::testing::Values(SceneCase{"shards", 1, 1 / 255.0f}, SceneCase{"smoke", 20, 2 / 255.0f},
                                            SceneCase{"fire", 20, 2 / 255.0f}, SceneCase{"complexity", 1, 1 / 255.0f},
-                                           SceneCase{"teapot", 1, 1 / 255.0f}),
-                         [](const ::testing::TestParamInfo<SceneCase>& info) { return std::string(info.param.scene); });
+                                           SceneCase{"teapot", 1, 1 / 255.0f}, SceneCase{"cubes", 1, 1 / 255.0f},
+                                           SceneCase{"ice-in-cup", 1, 1 / 255.0f},
+                                           SceneCase{"magic-circle", 1, 1 / 255.0f}),
+                         [](const ::testing::TestParamInfo<SceneCase>& info) {
+                           std::string name = info.param.scene;  // gtest names: no '-'
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
 
 // ---------------------------------------------------------------------------
 

@@ -119,7 +119,13 @@ TEST_F(MethodFamilyTest, MethodsReportTheMemoryOfTheirTargets) {
                    {"depth-peeling", pixels * (2 * 4 + layers * (8 + 8) + 16)},
                    {"dual-depth-peeling", pixels * (2 * 8 + 2 * 8 + 2 * 8 + 8 + 8 + 16)},
                    // a node pool of 16 a pixel (the default), 12 bytes a node, and a 4-byte head a pixel
-                   {"linked-list", pixels * 16 * 12 + pixels * 4}};
+                   {"linked-list", pixels * 16 * 12 + pixels * 4},
+                   // document 003: b0 R32_FLOAT (4), b1..b4 R32G32B32A32_FLOAT (16), accum
+                   // R16G16B16A16_FLOAT (8); the correction's nearest depth R32_FLOAT (4) or R16_FLOAT (2)
+                   {"mboit", pixels * (4 + 16 + 8)},
+                   {"moment-transparency", pixels * (4 + 16 + 8)},
+                   {"moment-transparency-mindepth", pixels * (4 + 16 + 8 + 4)},
+                   {"moment-transparency-mindepth-r16", pixels * (4 + 16 + 8 + 2)}};
   for (const auto& e : kExpected) {
     const MethodInfo* method = renderer::oit::FindMethod(e.method);
     ASSERT_NE(method, nullptr) << e.method;

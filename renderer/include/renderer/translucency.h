@@ -58,6 +58,10 @@ struct TranslucencySettings {
   int showLayer = -1;
   // The fragment-buffer methods' storage (prefix-sum's sizing, linked-list's pool).
   oit::FragmentStorage fragmentStorage;
+  // Document 003's m of moment-transparency-mindepth (per scene unit of view depth).
+  float minDepthSlope = oit::kDefaultMinDepthSlope;
+  // The camera's near and far planes; 0: the scene's (SceneInfo::nearPlane, farPlane).
+  float nearPlane = 0, farPlane = 0;
   // Background: the frame's clear colour (kSkyColour, or kNeutralColour) behind the backdrop.
   bool neutralBackground = false;  // a plain grey wall instead of coloured stripes
   bool timestamps = false;         // per-pass TIMESTAMP queries and the first method pass's statistics (LastTimes)

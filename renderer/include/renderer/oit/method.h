@@ -113,6 +113,9 @@ struct RenderArgs {
   Geometry* geometry = nullptr;
   PassMarks* marks = nullptr;
   OpaqueScene* opaque = nullptr;  // the opaque objects, when the method's Opaque() is VisibilityBuffer
+  // The frame's projection planes, view depths in scene units (renderer::Camera):
+  // what a method needs to turn window depth into view depth (the moment methods).
+  float nearPlane = 0, farPlane = 0;
 };
 
 class Method {
@@ -157,6 +160,9 @@ struct FragmentStorage {
   uint32_t nodesPerPixel = 16;
 };
 
+// Document 003's m, the slope of the minimum-depth correction (per scene unit of view depth).
+inline constexpr float kDefaultMinDepthSlope = 100.0f;
+
 // What a method is created with.
 struct MethodSetup {
   rhi::Device* device = nullptr;
@@ -164,6 +170,7 @@ struct MethodSetup {
   uint32_t peelLayers = kDefaultPeelLayers;  // the peeling methods: at most this many depth layers
   uint32_t objectCount = 0;  // the scene's translucent objects
   FragmentStorage fragmentStorage;
+  float minDepthSlope = kDefaultMinDepthSlope;  // moment-transparency-mindepth: m
 };
 
 using MethodFactory = std::unique_ptr<Method> (*)(const MethodInfo& info, const MethodSetup& setup,

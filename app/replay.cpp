@@ -145,8 +145,10 @@ int RunOne(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
 }
 
 int ListMethods() {
+  int width = 0;  // the longest name's
+  for (const MethodInfo* m : renderer::oit::Methods()) width = std::max(width, int(std::strlen(m->name)));
   for (const MethodInfo* m : renderer::oit::Methods())
-    std::printf("%-18s needs: %-44s %s\n", m->name, renderer::oit::DescribeNeeds(m->needs).c_str(), m->summary);
+    std::printf("%-*s needs: %-44s %s\n", width, m->name, renderer::oit::DescribeNeeds(m->needs).c_str(), m->summary);
   return 0;
 }
 

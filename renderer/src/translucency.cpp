@@ -104,6 +104,18 @@ class Translucency::FrameGeometry final : public oit::Geometry {
   oit::FrameDesc frame_;
 };
 
+// The opaque backdrop as a method draws it into its own targets.
+class Translucency::FrameBackdrop final : public oit::Backdrop {
+ public:
+  explicit FrameBackdrop(Translucency& translucency) : translucency_(translucency) {}
+  void Draw(DeviceContext*, RenderTargetView* color, DepthStencilView* depth) override {
+    translucency_.DrawBackdrop(color, depth);
+  }
+
+ private:
+  Translucency& translucency_;
+};
+
 namespace {
 
 // The method passes' timestamps, and the pipeline statistics of its first pass.
@@ -214,7 +226,8 @@ Translucency::MethodState* Translucency::Prepare(const oit::MethodInfo& info) {
                                {settings_.width, settings_.height, 1},
                                settings_.peelLayers,
                                uint32_t(m.objects.size()),
-                               settings_.fragmentStorage};
+                               settings_.fragmentStorage,
+                               settings_.msaaSamples};
   state.method = info.create(info, setup, &why);
   if (!state.method) return error_ = std::string(info.name) + ": " + why, nullptr;
   if (settings_.showLayer >= 0 && !state.method->ShowLayer(uint32_t(settings_.showLayer)))
@@ -268,7 +281,8 @@ bool Translucency::RenderFrame(const oit::MethodInfo& method) {
   if (timed) m.Stamp(*state, 2);
   FrameGeometry geometry(m, method, camera_, {settings_.width, settings_.height, 1});
   FrameMarks marks(ctx, timed ? &state->stamps : nullptr, m.firstPassStatistics.Get());
-  state->method->Render({ctx, {m.frameRtv.Get(), m.dsv.Get()}, &geometry, &marks});
+  FrameBackdrop backdrop(*this);
+  state->method->Render({ctx, {m.frameRtv.Get(), m.dsv.Get()}, &geometry, &marks, &backdrop});
   marks.Finish();
   if (timed) {
     ctx->End(m.disjoint.Get());
@@ -280,14 +294,16 @@ bool Translucency::RenderFrame(const oit::MethodInfo& method) {
 }
 
 // Opaque objects: scene.fx Opaque/Scene into the frame and the depth buffer.
-void Translucency::OpaquePass() {
+void Translucency::OpaquePass() { DrawBackdrop(impl_->frameRtv.Get(), impl_->dsv.Get()); }
+
+// The backdrop into `color` and `depth` (the frame's, or a method's own: oit::Backdrop).
+void Translucency::DrawBackdrop(RenderTargetView* color, DepthStencilView* depth) {
   Impl& m = *impl_;
   DeviceContext* ctx = m.context;
   const float sky[4] = {0.55f, 0.65f, 0.8f, 1.0f}, grey[4] = {0.6f, 0.6f, 0.6f, 1.0f};
-  ctx->ClearRenderTargetView(m.frameRtv.Get(), settings_.neutralBackground ? grey : sky);
-  ctx->ClearDepthStencilView(m.dsv.Get(), CLEAR_DEPTH, 1.0f, 0);
-  RenderTargetView* rtv = m.frameRtv.Get();
-  ctx->OMSetRenderTargets(1, &rtv, m.dsv.Get());
+  ctx->ClearRenderTargetView(color, settings_.neutralBackground ? grey : sky);
+  ctx->ClearDepthStencilView(depth, CLEAR_DEPTH, 1.0f, 0);
+  ctx->OMSetRenderTargets(1, &color, depth);
   VIEWPORT viewport{0, 0, float(settings_.width), float(settings_.height), 0, 1};
   ctx->RSSetViewports(1, &viewport);
   SetMatrix(m.viewProj, camera_.viewProj);

@@ -5,13 +5,10 @@
 #ifndef OIT_WEIGHTED_COMPOSE_FXH
 #define OIT_WEIGHTED_COMPOSE_FXH
 
+#include "fullscreen.hlsli"
+
 Texture2D<float4> Accum;      // R16G16B16A16_FLOAT: the sum of (c*a, a)*w
 Texture2D<float4> Revealage;  // R8_UNORM: the product of (1 - a)
-
-float4 VSFullscreen(uint id : SV_VertexID) : SV_Position {
-  float2 uv = float2((id << 1) & 2, id & 2);
-  return float4(uv * float2(2, -2) + float2(-1, 1), 0, 1);
-}
 
 float4 PSCompose(float4 pos : SV_Position) : SV_Target {
   int3 p = int3(pos.xy, 0);

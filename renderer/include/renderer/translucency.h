@@ -54,6 +54,8 @@ struct TranslucencySettings {
   int showLayer = -1;
   // The fragment-buffer methods' storage (prefix-sum's sizing, linked-list's pool).
   oit::FragmentStorage fragmentStorage;
+  // The multisampled methods (wboit-msaa and its variants): samples per pixel.
+  uint32_t msaaSamples = oit::kDefaultMsaaSamples;
   // Background.
   bool neutralBackground = false;  // a plain grey wall instead of coloured stripes
   bool timestamps = false;         // per-pass TIMESTAMP queries and the first method pass's statistics (LastTimes)
@@ -112,6 +114,8 @@ class Translucency {
   bool Initialize(rhi::Device* device, rhi::DeviceContext* context, const TranslucencySettings& settings);
   MethodState* Prepare(const oit::MethodInfo& method);
   void OpaquePass();
+  void DrawBackdrop(rhi::RenderTargetView* color, rhi::DepthStencilView* depth);
+  class FrameBackdrop;
 
   TranslucencySettings settings_;
   const SceneInfo* scene_ = nullptr;

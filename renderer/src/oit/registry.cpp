@@ -8,6 +8,11 @@ namespace renderer::oit {
   X(kAlpha)                     \
   X(kSorted)                    \
   X(kWboit)                     \
+  X(kWboitMsaa)                 \
+  X(kWboitMsaaPerPixel)         \
+  X(kWboitMsaaAdditive)         \
+  X(kWboitMsaaLinear)           \
+  X(kWboitMsaaExposure)         \
   X(kColored)                   \
   X(kColoredLiteral)            \
   X(kDepthPeeling)              \

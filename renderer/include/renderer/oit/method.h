@@ -86,11 +86,26 @@ class PassMarks {
   ~PassMarks() = default;
 };
 
+// The scene's opaque backdrop, which the frame driver draws into the frame
+// before the method runs. A method that needs the opaque objects in targets of
+// its own (document 001's multisampled colour and depth) draws them again here:
+// Draw clears `color` to the scene's background and `depth` to 1, binds them with
+// a full-frame viewport and draws the backdrop (scene.fx Opaque/Scene) with the
+// frame's camera. The targets may be multisampled; their size is the frame's.
+class Backdrop {
+ public:
+  virtual void Draw(rhi::DeviceContext* context, rhi::RenderTargetView* color, rhi::DepthStencilView* depth) = 0;
+
+ protected:
+  ~Backdrop() = default;
+};
+
 struct RenderArgs {
   rhi::DeviceContext* context = nullptr;
   FrameTargets targets;
   Geometry* geometry = nullptr;
   PassMarks* marks = nullptr;
+  Backdrop* backdrop = nullptr;
 };
 
 class Method {
@@ -133,6 +148,12 @@ struct FragmentStorage {
   uint32_t nodesPerPixel = 16;
 };
 
+// The samples per pixel of the multisampled methods (document 001's WBOIT with
+// MSAA) unless told otherwise: 4, which every D3D11 device and lavapipe have for
+// the formats those methods use; 8 where the device has it (they refuse it with
+// the reason where CheckMultisampleQualityLevels says it has not).
+inline constexpr uint32_t kDefaultMsaaSamples = 4;
+
 // What a method is created with.
 struct MethodSetup {
   rhi::Device* device = nullptr;
@@ -140,6 +161,7 @@ struct MethodSetup {
   uint32_t peelLayers = kDefaultPeelLayers;  // the peeling methods: at most this many depth layers
   uint32_t objectCount = 0;  // the scene's translucent objects
   FragmentStorage fragmentStorage;
+  uint32_t msaaSamples = kDefaultMsaaSamples;  // the multisampled methods' samples per pixel
 };
 
 using MethodFactory = std::unique_ptr<Method> (*)(const MethodInfo& info, const MethodSetup& setup,

@@ -53,6 +53,20 @@ struct QuadStack {
 constexpr float kCentreHalfAngleDegrees = 4.0f;
 std::vector<TriangleMesh> CameraFacingQuads(const QuadStack& stack);
 
+// Triangles facing an eye that looks at `target`, each an equilateral triangle
+// pointing up, for document 001's overlapping triangles. `offset` (right, up) from
+// the view axis and the circumradius `size` are measured in the plane through the
+// target (a triangle is scaled with its depth, so that the eye sees the same
+// layout at any depth); `depth` is its distance from the eye along the view axis.
+struct FacingTriangle {
+  glm::vec2 offset;
+  float size = 1.0f;
+  float depth = 1.0f;
+  MeshMaterial material;
+};
+std::vector<TriangleMesh> CameraFacingTriangles(const glm::vec3& eye, const glm::vec3& target,
+                                                const std::vector<FacingTriangle>& triangles);
+
 struct TranslucencySettings;
 // The complexity scene's stack (scenes.cpp): settings.depthComplexity quads from
 // settings.seed, facing the scripted camera of frame 0, 1.5 before to 1.5 behind its target.

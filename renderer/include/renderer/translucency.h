@@ -47,6 +47,10 @@ struct TranslucencySettings {
   // The complexity scene: how many translucent quads overlap over the centre of the
   // frame (1..64), the depth complexity that exact methods' per-pixel storage grows with.
   uint32_t depthComplexity = 8;
+  // The triangles scene (document 001): the opacity of its front blue triangle and
+  // of every other triangle (the article's failure case: 1 in front of 0.5).
+  float frontOpacity = 1.0f;
+  float triangleOpacity = 0.5f;
   // The peeling methods (document 002): the depth layers they keep, and, for a method
   // that keeps layers, one of them (0: the nearest) shown alone instead of the
   // composite (-1: the composite).

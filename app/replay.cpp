@@ -18,7 +18,12 @@
 //       teapot scene): fig3_<scene>_depth_peeling_layers_0-3.png (Fig. 3: layers 0-3, each
 //       alone over neutral grey) and fig6_<scene>_depth_peeling_1_2_4_8_exact.png (Fig. 6:
 //       1, 2, 4 and 8 layers and the exact composite, every layer peeled), every
-//       method's RMSE / PSNR against the sorted reference, and Fig. 6's against the exact one
+//       method's RMSE / PSNR against the sorted reference, and Fig. 6's against the exact one;
+//       document 001's on its triangles against the exact composite (prefix-sum):
+//       fig001_triangles_opacity1_exact_wboit_msaa.png (opacity 1 hides nothing),
+//       fig001_triangles_opacity_sweep_exact_above_wboit_msaa_below.png (0.1 .. 1, with RMSE),
+//       fig001_triangles_per_sample_per_pixel_differing.png (the differing pixels counted),
+//       fig001_triangles_wboit_additive_linear_exposure.png (the discussion's variants)
 //   replay --bench [--scene demo|paper|heavy|complexity] [--frames N] [--warmup N] [--size WxH]
 //                  [--fragment-sizing exact|late]
 //       per registered method: FPS and frame ms from the GPU (TIMESTAMP queries inside a
@@ -31,6 +36,8 @@
 //       A method that refuses a scene is skipped with its reason; a method of more than two
 //       passes also gets a line of its passes' GPU ms by name.
 //       --warmup defaults to the updates the smoke needs to reach its steady state.
+//   --msaa 4|8 (--demo, --figures, --bench): the samples of the multisampled methods
+//       (wboit-msaa and its variants; default 4; 8 refused where the device has none).
 //   --fragment-sizing (--demo, --bench): how prefix-sum sizes its fragment buffer: exact
 //       (default: each frame's own total, the CPU waits for it) or late (earlier frames'
 //       totals, no wait; a frame that outgrows the buffer loses fragments, reported).
@@ -74,7 +81,19 @@ struct Options {
   uint32_t peelLayers = renderer::oit::kDefaultPeelLayers;
   int layer = -1;  // --layer: the layer shown alone
   renderer::oit::FragmentStorage fragmentStorage;  // --fragment-sizing
+  uint32_t msaaSamples = renderer::oit::kDefaultMsaaSamples;  // --msaa
 };
+
+// The settings of a replay of `scene` at --size with the methods' options.
+renderer::TranslucencySettings Settings(const Options& o, const std::string& scene) {
+  renderer::TranslucencySettings s;
+  s.scene = scene;
+  s.width = o.width, s.height = o.height;
+  s.peelLayers = o.peelLayers;
+  s.fragmentStorage = o.fragmentStorage;
+  s.msaaSamples = o.msaaSamples;
+  return s;
+}
 
 std::unique_ptr<renderer::Translucency> Make(rhi::Device* device, rhi::DeviceContext* ctx,
                                              renderer::TranslucencySettings settings) {
@@ -123,12 +142,8 @@ std::vector<uint8_t> SideBySide(const std::vector<std::vector<uint8_t>>& images,
 }
 
 int RunOne(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
-  renderer::TranslucencySettings s;
-  s.scene = o.demo;
-  s.width = o.width, s.height = o.height;
-  s.peelLayers = o.peelLayers;
+  renderer::TranslucencySettings s = Settings(o, o.demo);
   s.showLayer = o.layer;
-  s.fragmentStorage = o.fragmentStorage;
   const int frames = Frames(o, o.demo);
   auto t = Make(device, ctx, s);
   std::filesystem::create_directories(o.out);
@@ -196,7 +211,7 @@ void WritePeelingFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Opt
     s.peelLayers = n;
     panels.push_back(Replay(device, ctx, s, peeling, frames));
     const double rmse = renderer::Rmse(panels.back(), exactImage);
-    std::printf("%-10s %-18s %10.3f %10.2f  (%u layers against the exact composite)\n", scene.c_str(), peeling.name,
+    std::printf("%-10s %-20s %10.3f %10.2f  (%u layers against the exact composite)\n", scene.c_str(), peeling.name,
                 rmse, renderer::Psnr(rmse), n);
   }
   panels.push_back(exactImage);
@@ -204,9 +219,84 @@ void WritePeelingFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Opt
   WritePng((out / ("fig6_" + scene + "_depth_peeling_1_2_4_8_exact.png")).string(), fig6, w, o.height);
 }
 
+// `images` (each w x h) in rows of `perRow`, with 4-pixel white gaps.
+std::vector<uint8_t> Grid(const std::vector<std::vector<uint8_t>>& images, size_t perRow, uint32_t w, uint32_t h,
+                          uint32_t* outWidth, uint32_t* outHeight) {
+  const uint32_t gap = 4, rows = uint32_t((images.size() + perRow - 1) / perRow);
+  std::vector<uint8_t> out;
+  for (uint32_t r = 0; r < rows; ++r) {
+    std::vector<std::vector<uint8_t>> row(images.begin() + r * perRow,
+                                          images.begin() + std::min(images.size(), (r + 1) * perRow));
+    while (row.size() < perRow) row.emplace_back(size_t(w) * h * 4, 255);
+    if (r > 0) out.insert(out.end(), size_t(*outWidth) * gap * 4, 255);
+    const std::vector<uint8_t> strip = SideBySide(row, w, h, outWidth);
+    out.insert(out.end(), strip.begin(), strip.end());
+  }
+  *outHeight = rows * h + (rows - 1) * gap;
+  return out;
+}
+
+// The pixels where two frames differ, in red over `a` at a quarter of its brightness.
+std::vector<uint8_t> DifferingPixels(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, size_t* count) {
+  std::vector<uint8_t> map(a.size());
+  *count = 0;
+  for (size_t i = 0; i < a.size(); i += 4) {
+    const bool differs = a[i] != b[i] || a[i + 1] != b[i + 1] || a[i + 2] != b[i + 2];
+    *count += differs;
+    for (int c = 0; c < 3; ++c) map[i + c] = differs ? (c == 0 ? 255 : 0) : uint8_t(a[i + c] / 4);
+    map[i + 3] = 255;
+  }
+  return map;
+}
+
+// Document 001's figures on its triangles, against the exact composite (prefix-sum):
+//   the failure of opacity 1 (the front blue triangle): exact | WBOIT with MSAA;
+//   an opacity sweep, every triangle at 0.1 .. 1: exact above, WBOIT below;
+//   what the per-sample resolve buys: per sample | per pixel | the pixels that differ;
+//   the variants of its discussion: WBOIT | additive | additive linear (sRGB) | exposure.
+void WriteWboitMsaaFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
+  const MethodInfo &exact = Method("prefix-sum"), &wboit = Method("wboit-msaa");
+  const std::filesystem::path out(o.out);
+  const uint32_t w = o.width, h = o.height;
+  uint32_t fw = 0, fh = 0;
+  const renderer::TranslucencySettings s = Settings(o, "triangles");
+  const std::vector<std::vector<uint8_t>> failure = {Replay(device, ctx, s, exact, 1), Replay(device, ctx, s, wboit, 1)};
+  const auto failureFigure = SideBySide(failure, w, h, &fw);
+  WritePng((out / "fig001_triangles_opacity1_exact_wboit_msaa.png").string(), failureFigure, fw, h);
+
+  std::vector<std::vector<uint8_t>> exactRow, wboitRow;
+  for (float opacity : {0.1f, 0.25f, 0.5f, 0.75f, 1.0f}) {
+    renderer::TranslucencySettings sweep = s;
+    sweep.frontOpacity = sweep.triangleOpacity = opacity;
+    exactRow.push_back(Replay(device, ctx, sweep, exact, 1));
+    wboitRow.push_back(Replay(device, ctx, sweep, wboit, 1));
+    const double rmse = renderer::Rmse(wboitRow.back(), exactRow.back());
+    std::printf("%-10s %-20s %10.3f %10.2f  (every triangle at opacity %.2f, against prefix-sum)\n", "triangles",
+                wboit.name, rmse, renderer::Psnr(rmse), opacity);
+  }
+  exactRow.insert(exactRow.end(), wboitRow.begin(), wboitRow.end());
+  auto sweepFigure = Grid(exactRow, 5, w, h, &fw, &fh);
+  WritePng((out / "fig001_triangles_opacity_sweep_exact_above_wboit_msaa_below.png").string(), sweepFigure, fw, fh);
+
+  const std::vector<uint8_t>& perSample = failure[1];
+  const std::vector<uint8_t> perPixel = Replay(device, ctx, s, Method("wboit-msaa-per-pixel"), 1);
+  size_t differing = 0;
+  const std::vector<uint8_t> edges = DifferingPixels(perSample, perPixel, &differing);
+  std::printf("triangles: %zu of %u pixels differ between the per-sample and the per-pixel resolve (%ux MSAA)\n",
+              differing, w * h, o.msaaSamples);
+  const auto edgeFigure = SideBySide({perSample, perPixel, edges}, w, h, &fw);
+  WritePng((out / "fig001_triangles_per_sample_per_pixel_differing.png").string(), edgeFigure, fw, h);
+
+  std::vector<std::vector<uint8_t>> variants;
+  for (const char* name : {"wboit-msaa", "wboit-msaa-additive", "wboit-msaa-linear", "wboit-msaa-exposure"})
+    variants.push_back(Replay(device, ctx, s, Method(name), 1));
+  const auto variantFigure = SideBySide(variants, w, h, &fw);
+  WritePng((out / "fig001_triangles_wboit_additive_linear_exposure.png").string(), variantFigure, fw, h);
+}
+
 int RunFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
   std::filesystem::create_directories(o.out);
-  std::printf("%-10s %-18s %10s %10s\n", "demo", "method", "RMSE", "PSNR dB");
+  std::printf("%-10s %-20s %10s %10s\n", "demo", "method", "RMSE", "PSNR dB");
   // Every scene with every method, measured against the sorted reference; the
   // figures are the source document's, each of named methods.
   struct Figure {
@@ -220,15 +310,13 @@ int RunFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
                             {"shards", "fig_shards_wboit_colored_sorted.png", {"wboit", "colored", "sorted"}},
                             {"teapot", "fig3_teapot_alpha_sorted_wboit.png", {"alpha", "sorted", "wboit"}}};
   for (const renderer::SceneInfo* scene : renderer::Scenes()) {
-    renderer::TranslucencySettings s;
-    s.scene = scene->name;
-    s.width = o.width, s.height = o.height;
+    const renderer::TranslucencySettings s = Settings(o, scene->name);
     const int frames = Frames(o, scene->name);
     std::map<std::string, std::vector<uint8_t>> images;
     for (const MethodInfo* m : renderer::oit::Methods()) images[m->name] = Replay(device, ctx, s, *m, frames);
     for (const MethodInfo* m : renderer::oit::Methods()) {
       double rmse = renderer::Rmse(images[m->name], images["sorted"]);
-      std::printf("%-10s %-18s %10.3f %10.2f\n", scene->name, m->name, rmse, renderer::Psnr(rmse));
+      std::printf("%-10s %-20s %10.3f %10.2f\n", scene->name, m->name, rmse, renderer::Psnr(rmse));
     }
     for (const Figure& f : figures) {
       if (std::string(f.scene) != scene->name) continue;
@@ -240,6 +328,7 @@ int RunFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
     }
   }
   WritePeelingFigures(device, ctx, o);
+  WriteWboitMsaaFigures(device, ctx, o);
   return 0;
 }
 
@@ -381,6 +470,7 @@ int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
   for (const BenchCase& bc : BenchCases(o)) {
     renderer::TranslucencySettings base = bc.settings;
     base.fragmentStorage = o.fragmentStorage;
+    base.msaaSamples = o.msaaSamples;
     base.timestamps = true;
     base.countParticles = false;
     const bool particles = base.scene == "smoke" || base.scene == "fire";
@@ -455,13 +545,16 @@ int main(int argc, char** argv) {
       const std::string v = next();
       if (v != "exact" && v != "late") Fail("--fragment-sizing takes exact or late");
       o.fragmentStorage.exactSizing = v == "exact";
+    } else if (a == "--msaa") {
+      o.msaaSamples = uint32_t(std::atoi(next().c_str()));
+      if (o.msaaSamples != 4 && o.msaaSamples != 8) Fail("--msaa takes 4 or 8 (samples per pixel)");
     } else if (a == "--layer") {
       o.layer = std::atoi(next().c_str());
       if (o.layer < 0) Fail("--layer takes a layer number, 0 the nearest");
     } else {
       Fail("unknown argument " + a +
            "\nusage: replay --demo SCENE --method METHOD [--frames N] [--size WxH] [--peel-layers N] [--layer K]"
-           " [--fragment-sizing exact|late] --out DIR"
+           " [--fragment-sizing exact|late] [--msaa 4|8] --out DIR"
            "\n       replay --list-methods | --list-scenes"
            "\n       replay --figures --out DIR\n       replay --bench [--scene demo|paper|heavy|complexity] [--frames N] [--warmup N]"
            "\n  scenes: " + renderer::SceneNames() + "\n  methods: " + renderer::oit::MethodNames());

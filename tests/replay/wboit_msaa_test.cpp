@@ -105,7 +105,7 @@ Rgb OpaqueSample(const MsaaFrame& f, size_t pixel, uint32_t s) {
 }
 
 // The resolve of a UNORM target: the average of the samples' stored 8-bit values.
-Rgb ResolveUnorm(const MsaaFrame& f, size_t pixel, const std::function<Rgb(uint32_t sample)>& composite) {
+Rgb ResolveUnorm(const MsaaFrame& f, const std::function<Rgb(uint32_t sample)>& composite) {
   Rgb sum{};
   for (uint32_t s = 0; s < f.samples; ++s) {
     Rgb c = composite(s);
@@ -123,7 +123,7 @@ TEST_F(WboitMsaaTest, PerSampleCompositeEqualsTheCpuModel) {
   ExpectFrame(
       f,
       [&](size_t p) {
-        return ResolveUnorm(f, p, [&](uint32_t s) {
+        return ResolveUnorm(f, [&](uint32_t s) {
           return Weighted(OpaqueSample(f, p, s), &f.accum[Index(f, p, s)], f.product[Index(f, p, s)]);
         });
       },
@@ -200,7 +200,7 @@ TEST_P(WboitMsaaVariantTest, CompositeEqualsTheCpuModel) {
   auto effect = renderer::oit::LoadMethodEffect(device.Get(), method, nullptr, {}, &error);
   ASSERT_TRUE(effect) << error;
   float k = 0;
-  ASSERT_EQ(effect->GetVariableByName("Exposure")->AsScalar()->GetFloat(&k), S_OK);
+  ASSERT_EQ(effect->GetVariableByName("Exposure")->AsScalar()->GetFloat(&k), rhi::S_OK);
 
   const MsaaFrame f = Render(method, Triangles());
   ASSERT_GT(f.samples, 0u);
@@ -218,7 +218,7 @@ TEST_P(WboitMsaaVariantTest, CompositeEqualsTheCpuModel) {
   ExpectFrame(
       f,
       [&](size_t p) {
-        if (!v.linear) return ResolveUnorm(f, p, [&](uint32_t s) { return sample(p, s); });
+        if (!v.linear) return ResolveUnorm(f, [&](uint32_t s) { return sample(p, s); });
         Rgb sum{};  // each sample stored sRGB-encoded in 8 bits, averaged in linear space
         for (uint32_t s = 0; s < f.samples; ++s) {
           Rgb c = sample(p, s);
@@ -271,7 +271,7 @@ TEST_F(WboitMsaaTest, EightSamplesRunOrAreRefusedWithTheReason) {
   for (rhi::DXGI_FORMAT format : {rhi::DXGI_FORMAT_R16G16B16A16_FLOAT, rhi::DXGI_FORMAT_R16_FLOAT,
                                   rhi::DXGI_FORMAT_D32_FLOAT, rhi::DXGI_FORMAT_R8G8B8A8_UNORM}) {
     UINT n = 0;
-    ASSERT_EQ(device->CheckMultisampleQualityLevels(format, 8, &n), S_OK);
+    ASSERT_EQ(device->CheckMultisampleQualityLevels(format, 8, &n), rhi::S_OK);
     levels = std::min(levels, n);
   }
   std::string error;

@@ -383,7 +383,7 @@ std::vector<BenchCase> BenchCases(const Options& o) {
 
 // The timed samples of one method (medians are taken at the end).
 struct MethodSamples {
-  std::vector<double> wall, cpu, opaque, update, firstPass, laterPasses, gpu, fragments;
+  std::vector<double> wall, cpu, opaque, update, fragmentPass, laterPasses, gpu, fragments;
   std::vector<std::vector<double>> passes;  // [pass][frame]
 };
 
@@ -398,12 +398,12 @@ void TimeFrame(renderer::Translucency& t, const MethodInfo& method, MethodSample
   samples.wall.push_back(std::chrono::duration<double, std::milli>(done - start).count());
   if (!times.valid) return;
   samples.opaque.push_back(times.opaqueMs), samples.update.push_back(times.updateMs);
-  double later = 0;
-  for (size_t i = 1; i < times.methodPassMs.size(); ++i) later += times.methodPassMs[i];
-  samples.firstPass.push_back(times.methodPassMs.at(0)), samples.laterPasses.push_back(later);
+  double later = 0;  // the passes after the fragment pass (a pass before it is in the total)
+  for (size_t i = times.fragmentPass + 1; i < times.methodPassMs.size(); ++i) later += times.methodPassMs[i];
+  samples.fragmentPass.push_back(times.methodPassMs.at(times.fragmentPass)), samples.laterPasses.push_back(later);
   samples.passes.resize(times.methodPassMs.size());
   for (size_t i = 0; i < times.methodPassMs.size(); ++i) samples.passes[i].push_back(times.methodPassMs[i]);
-  samples.gpu.push_back(times.totalMs), samples.fragments.push_back(double(times.firstPassFragments));
+  samples.gpu.push_back(times.totalMs), samples.fragments.push_back(double(times.fragmentPassInvocations));
 }
 
 // A replay of one method warmed up for the bench, or null (and `why`) when the
@@ -447,7 +447,7 @@ void PrintBenchRow(BenchReplay& r, const renderer::TranslucencySettings& base, b
     t.LastTimes();
   }
   // The 3D pass's fill rate: fragments shaded (and blended) per second.
-  const double pass3dMs = Median(m.firstPass), fragmentCount = Median(m.fragments);
+  const double pass3dMs = Median(m.fragmentPass), fragmentCount = Median(m.fragments);
   std::printf("%-18s %9.1f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9llu %10u %9.2f %9.2f %10.2f\n", r.method->name,
               gpuMs > 0 ? 1000.0 / gpuMs : 0.0, gpuMs, Median(m.opaque), Median(m.update), pass3dMs,
               Median(m.laterPasses), Median(m.cpu), Median(m.wall), static_cast<unsigned long long>(live),

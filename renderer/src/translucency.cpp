@@ -56,7 +56,7 @@ struct Translucency::Impl {
   std::vector<std::unique_ptr<TranslucentObject>> objects;
   std::map<std::string, MethodState> methods;
   // Timing.
-  ComPtr<Query> disjoint, firstPassStatistics;
+  ComPtr<Query> disjoint, fragmentPassStatistics;
   MethodState* timed = nullptr;  // the method of the last timed frame, until LastTimes reads it
 
   void Stamp(MethodState& state, size_t index) { context->End(state.stamps[index].Get()); }
@@ -118,16 +118,16 @@ class Translucency::FrameBackdrop final : public oit::Backdrop {
 
 namespace {
 
-// The method passes' timestamps, and the pipeline statistics of its first pass.
+// The method passes' timestamps, and the pipeline statistics of its fragment pass.
 class FrameMarks final : public oit::PassMarks {
  public:
-  FrameMarks(DeviceContext* context, std::vector<ComPtr<Query>>* stamps, Query* statistics)
-      : context_(context), stamps_(stamps), statistics_(statistics) {}
+  FrameMarks(DeviceContext* context, std::vector<ComPtr<Query>>* stamps, Query* statistics, size_t fragmentPass)
+      : context_(context), stamps_(stamps), statistics_(statistics), fragmentPass_(fragmentPass) {}
   void BeginPass(size_t index) override {
     if (!stamps_) return;
-    if (index == 1) EndStatistics();
+    if (index == fragmentPass_ + 1) EndStatistics();
     context_->End((*stamps_)[kStampsBeforeMethod + index].Get());
-    if (index == 0) {
+    if (index == fragmentPass_) {
       context_->Begin(statistics_);
       statisticsOpen_ = true;
     }
@@ -146,6 +146,7 @@ class FrameMarks final : public oit::PassMarks {
   DeviceContext* context_;
   std::vector<ComPtr<Query>>* stamps_;  // null: not timing
   Query* statistics_;
+  size_t fragmentPass_;
   bool statisticsOpen_ = false;
 };
 
@@ -210,7 +211,7 @@ bool Translucency::Initialize(Device* device, DeviceContext* context, const Tran
 
   QUERY_DESC disjoint{QUERY_TIMESTAMP_DISJOINT, 0}, statistics{QUERY_PIPELINE_STATISTICS, 0};
   if (FAILED(device->CreateQuery(&disjoint, m.disjoint.GetAddressOf())) ||
-      FAILED(device->CreateQuery(&statistics, m.firstPassStatistics.GetAddressOf())))
+      FAILED(device->CreateQuery(&statistics, m.fragmentPassStatistics.GetAddressOf())))
     return fail("the queries");
 
   return scene_->build(device, s, &m.objects, &error_) || fail(std::string("the scene ") + scene_->name);
@@ -280,7 +281,8 @@ bool Translucency::RenderFrame(const oit::MethodInfo& method) {
   for (auto& object : m.objects) object->Update(ctx, count);
   if (timed) m.Stamp(*state, 2);
   FrameGeometry geometry(m, method, camera_, {settings_.width, settings_.height, 1});
-  FrameMarks marks(ctx, timed ? &state->stamps : nullptr, m.firstPassStatistics.Get());
+  FrameMarks marks(ctx, timed ? &state->stamps : nullptr, m.fragmentPassStatistics.Get(),
+                   state->method->FragmentPass());
   FrameBackdrop backdrop(*this);
   state->method->Render({ctx, {m.frameRtv.Get(), m.dsv.Get()}, &geometry, &marks, &backdrop});
   marks.Finish();
@@ -343,7 +345,7 @@ PassTimes Translucency::LastTimes() {
   bool ready = SUCCEEDED(WaitForData(m.context, m.disjoint.Get(), &disjoint));
   for (size_t i = 0; i < stamps.size(); ++i)
     ready = SUCCEEDED(WaitForData(m.context, state->stamps[i].Get(), &stamps[i])) && ready;
-  ready = SUCCEEDED(WaitForData(m.context, m.firstPassStatistics.Get(), &statistics)) && ready;
+  ready = SUCCEEDED(WaitForData(m.context, m.fragmentPassStatistics.Get(), &statistics)) && ready;
   if (!ready || disjoint.Disjoint || disjoint.Frequency == 0) return t;
   auto ms = [&](size_t a, size_t b) { return double(stamps[b] - stamps[a]) * 1000.0 / double(disjoint.Frequency); };
   t.valid = true;
@@ -351,7 +353,8 @@ PassTimes Translucency::LastTimes() {
   t.updateMs = ms(1, 2);
   for (size_t i = kStampsBeforeMethod; i + 1 < stamps.size(); ++i) t.methodPassMs.push_back(ms(i, i + 1));
   t.totalMs = ms(0, stamps.size() - 1);
-  t.firstPassFragments = statistics.PSInvocations;
+  t.fragmentPass = state->method->FragmentPass();
+  t.fragmentPassInvocations = statistics.PSInvocations;
   return t;
 }
 

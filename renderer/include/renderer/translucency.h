@@ -62,7 +62,7 @@ struct TranslucencySettings {
   uint32_t msaaSamples = oit::kDefaultMsaaSamples;
   // Background.
   bool neutralBackground = false;  // a plain grey wall instead of coloured stripes
-  bool timestamps = false;         // per-pass TIMESTAMP queries and the first method pass's statistics (LastTimes)
+  bool timestamps = false;         // per-pass TIMESTAMP queries and the fragment pass's statistics (LastTimes)
   bool countParticles = false;     // SO_STATISTICS around every update (see particleCount)
 };
 
@@ -70,9 +70,11 @@ struct PassTimes {
   bool valid = false;  // false when the disjoint query said disjoint
   double opaqueMs = 0, updateMs = 0, totalMs = 0;
   std::vector<double> methodPassMs;  // one per pass of the method, as its PassNames()
-  // Pixel-shader invocations of the method's first pass (PIPELINE_STATISTICS): the
-  // fragments it shades and blends, what a fill-bound pass's time follows.
-  uint64_t firstPassFragments = 0;
+  // Pixel-shader invocations of the method's pass that draws the translucent objects
+  // (Method::FragmentPass, PIPELINE_STATISTICS): the fragments it shades and blends,
+  // what a fill-bound pass's time follows.
+  size_t fragmentPass = 0;
+  uint64_t fragmentPassInvocations = 0;
 };
 
 class Translucency {

@@ -141,7 +141,10 @@ class WboitMsaaMethod final : public Method {
       bytes += t->bytes;
     return bytes;
   }
-  const std::vector<std::string>& PassNames() const override { return kPasses; }
+  size_t FragmentPass() const override { return 1; }  // after Scene
+  const std::vector<std::string>& PassNames() const override {
+    return variant_.perSample ? kPerSamplePasses : kPerPixelPasses;
+  }
 
   WboitMsaaTargets Targets() const {
     return {opaque_.srv.Get(), accum_.srv.Get(), product_.srv.Get(), samples_};
@@ -181,7 +184,8 @@ class WboitMsaaMethod final : public Method {
   }
 
   // "Scene": the opaque objects (scene.fx Opaque/Scene, the effect pass oit::Backdrop applies).
-  inline static const std::vector<std::string> kPasses = {"Scene", "Transparency", "Compose"};
+  inline static const std::vector<std::string> kPerSamplePasses = {"Scene", "Transparency", "Compose"};
+  inline static const std::vector<std::string> kPerPixelPasses = {"Scene", "Transparency", "ComposePerPixel"};
   Variant variant_;
   uint32_t samples_ = 0;
   Target opaque_, depth_, accum_, product_;   // multisampled

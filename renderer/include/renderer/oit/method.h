@@ -117,6 +117,10 @@ class Method {
   virtual uint64_t MemoryBytes() const = 0;
   // Its passes in the order Render runs them (the names of their effect passes).
   virtual const std::vector<std::string>& PassNames() const = 0;
+  // The pass that draws the translucent objects, whose pixel-shader invocations the
+  // frame counts (PassTimes::fragmentPassInvocations): the first for most methods; a
+  // later one where the method first draws the opaque objects into targets of its own.
+  virtual size_t FragmentPass() const { return 0; }
 
   // Methods that keep the translucent fragments as depth layers (depth peeling).
   // From the next Render on, the frame shows layer `layer` (0: the nearest) alone

@@ -10,7 +10,7 @@
 //       that keeps layers (depth-peeling) shows layer K alone, over neutral grey, in
 //       DIR/<scene>_<method>_layer<K>_<frame>.png.
 //       fire: flames drawn with additive blending for alpha and sorted (order-independent).
-//   replay --figures --out DIR [--size WxH] [--frames N]
+//   replay --figures --out DIR [--size WxH] [--frames N] [--document 001]
 //       fig1_smoke_alpha_wboit.png (alpha | WBOIT), fig_shards_wboit_colored_sorted.png
 //       (WBOIT | colored | sorted), fig_fire_additive_wboit_colored.png,
 //       fig3_teapot_alpha_sorted_wboit.png (document 002's teapot: alpha | sorted | WBOIT),
@@ -23,7 +23,8 @@
 //       fig001_triangles_opacity1_exact_wboit_msaa.png (opacity 1 hides nothing),
 //       fig001_triangles_opacity_sweep_exact_above_wboit_msaa_below.png (0.1 .. 1, with RMSE),
 //       fig001_triangles_per_sample_per_pixel_differing.png (the differing pixels counted),
-//       fig001_triangles_wboit_additive_linear_exposure.png (the discussion's variants)
+//       fig001_triangles_wboit_additive_linear_exposure.png (the discussion's variants);
+//       --document 001: only these
 //   replay --bench [--scene demo|paper|heavy|complexity] [--frames N] [--warmup N] [--size WxH]
 //                  [--fragment-sizing exact|late]
 //       per registered method: FPS and frame ms from the GPU (TIMESTAMP queries inside a
@@ -82,6 +83,7 @@ struct Options {
   int layer = -1;  // --layer: the layer shown alone
   renderer::oit::FragmentStorage fragmentStorage;  // --fragment-sizing
   uint32_t msaaSamples = renderer::oit::kDefaultMsaaSamples;  // --msaa
+  bool document001Only = false;  // --figures --document 001
 };
 
 // The settings of a replay of `scene` at --size with the methods' options.
@@ -296,6 +298,7 @@ void WriteWboitMsaaFigures(rhi::Device* device, rhi::DeviceContext* ctx, const O
 
 int RunFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
   std::filesystem::create_directories(o.out);
+  if (o.document001Only) return WriteWboitMsaaFigures(device, ctx, o), 0;
   std::printf("%-10s %-20s %10s %10s\n", "demo", "method", "RMSE", "PSNR dB");
   // Every scene with every method, measured against the sorted reference; the
   // figures are the source document's, each of named methods.
@@ -545,6 +548,9 @@ int main(int argc, char** argv) {
       const std::string v = next();
       if (v != "exact" && v != "late") Fail("--fragment-sizing takes exact or late");
       o.fragmentStorage.exactSizing = v == "exact";
+    } else if (a == "--document") {
+      if (next() != "001") Fail("--document takes 001 (only its figures)");
+      o.document001Only = true;
     } else if (a == "--msaa") {
       o.msaaSamples = uint32_t(std::atoi(next().c_str()));
       if (o.msaaSamples != 4 && o.msaaSamples != 8) Fail("--msaa takes 4 or 8 (samples per pixel)");

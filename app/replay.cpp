@@ -26,9 +26,10 @@
 //       fig001_triangles_wboit_additive_linear_exposure.png (the discussion's variants);
 //       --document 001: only these
 //   replay --bench [--scene demo|paper|heavy|complexity] [--frames N] [--warmup N] [--size WxH]
-//                  [--fragment-sizing exact|late]
+//                  [--fragment-sizing exact|late] [--msaa 4|8]
 //       per registered method: FPS and frame ms from the GPU (TIMESTAMP queries inside a
-//       TIMESTAMP_DISJOINT query, median over N frames), per-pass GPU ms, CPU ms per frame
+//       TIMESTAMP_DISJOINT query, median over N frames), per-pass GPU ms (the "3D pass" is
+//       the method's pass that draws the translucent objects, Method::FragmentPass), CPU ms per frame
 //       (RenderFrame's recording and submission, median), wall ms; WBOIT/alpha ratio.
 //       demo:  the smoke and shards demos at --size (default 640x360);
 //       paper: 1280x720, smoke of a few thousand particles over the opaque scene (Fig. 2);

@@ -429,7 +429,7 @@ std::vector<BenchReplay> WarmedUpReplays(rhi::Device* device, rhi::DeviceContext
       t->LastTimes();
     }
     if (!made) {
-      std::printf("%-18s skipped: %s\n", method->name, t->error().c_str());
+      std::printf("%-20s skipped: %s\n", method->name, t->error().c_str());
       continue;
     }
     replays.push_back({method, std::move(t), {}});
@@ -452,13 +452,13 @@ void PrintBenchRow(BenchReplay& r, const renderer::TranslucencySettings& base, b
   }
   // The 3D pass's fill rate: fragments shaded (and blended) per second.
   const double pass3dMs = Median(m.fragmentPass), fragmentCount = Median(m.fragments);
-  std::printf("%-18s %9.1f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9llu %10u %9.2f %9.2f %10.2f\n", r.method->name,
+  std::printf("%-20s %9.1f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9llu %10u %9.2f %9.2f %10.2f\n", r.method->name,
               gpuMs > 0 ? 1000.0 / gpuMs : 0.0, gpuMs, Median(m.opaque), Median(m.update), pass3dMs,
               Median(m.laterPasses), Median(m.cpu), Median(m.wall), static_cast<unsigned long long>(live),
               base.scene == "shards" ? base.shardCount : base.extraShards, fragmentCount / 1e6,
               pass3dMs > 0 ? fragmentCount / (pass3dMs * 1e6) : 0.0, mib);
   if (method->PassNames().size() > 2) {  // the passes of a many-pass method, by name
-    std::printf("%16s", "");
+    std::printf("%18s", "");
     for (size_t i = 0; i < m.passes.size(); ++i)
       std::printf(" %s %.3f", method->PassNames()[i].c_str(), Median(m.passes[i]));
     std::printf("\n");
@@ -483,7 +483,7 @@ int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
                                      : particles ? int(base.rule.minLife + base.rule.lifeRange) : 2;
     std::printf("\n%s: %ux%u, %s%s, %d warm-up frames, the methods' frames interleaved\n", bc.name.c_str(),
                 base.width, base.height, base.scene.c_str(), base.extraShards ? " + shards" : "", warmup);
-    std::printf("%-18s %9s %9s %9s %9s %9s %9s %9s %9s %9s %10s %9s %9s %10s\n", "method", "FPS(GPU)", "GPU ms",
+    std::printf("%-20s %9s %9s %9s %9s %9s %9s %9s %9s %9s %10s %9s %9s %10s\n", "method", "FPS(GPU)", "GPU ms",
                 "opaque", "update", "3D pass", "later", "CPU ms", "wall ms", "particles", "shards", "3D Mfrag",
                 "Gfrag/s", "MiB");
     // One replay per method, each warmed up; then frame i of every method in turn, so that

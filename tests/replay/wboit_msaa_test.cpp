@@ -191,6 +191,8 @@ struct VariantCase {
   bool exposure, linear;
 };
 
+void PrintTo(const VariantCase& c, std::ostream* os) { *os << c.method; }
+
 class WboitMsaaVariantTest : public WboitMsaaTest, public ::testing::WithParamInterface<VariantCase> {};
 
 TEST_P(WboitMsaaVariantTest, CompositeEqualsTheCpuModel) {

@@ -8,13 +8,13 @@ namespace renderer::oit {
   X(kAlpha)                     \
   X(kSorted)                    \
   X(kWboit)                     \
+  X(kColored)                   \
+  X(kColoredLiteral)            \
   X(kWboitMsaa)                 \
   X(kWboitMsaaPerPixel)         \
   X(kWboitMsaaAdditive)         \
   X(kWboitMsaaLinear)           \
   X(kWboitMsaaExposure)         \
-  X(kColored)                   \
-  X(kColoredLiteral)            \
   X(kDepthPeeling)              \
   X(kDualDepthPeeling)          \
   X(kPrefixSum)                 \

@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "fx/effect.h"
+#include "objects/objects.h"
 #include "renderer/effect_files.h"
 #include "rhi/capture.h"
 #include "rhi/query_wait.h"
@@ -48,9 +49,17 @@ struct Translucency::Impl {
   ComPtr<InputLayout> opaqueLayout;
   ComPtr<Buffer> opaqueVb;
   UINT opaqueVertices = 0;
+  // Document 004's visibility buffer (technique Visibility), made when a method
+  // that shades the opaque objects deferred first renders: the triangle id a pixel
+  // shows (R32_UINT), and the raw view of the vertices that Visibility/Shade reads.
+  fx::EffectPass* visibilityIdsPass = nullptr;
+  ComPtr<Texture2D> visibility;
+  ComPtr<RenderTargetView> visibilityRtv;
+  ComPtr<ShaderResourceView> visibilitySrv, opaqueVerticesSrv;
   // The frame (R8G8B8A8_UNORM) and the opaque depth.
   ComPtr<Texture2D> frame, depth;
   ComPtr<RenderTargetView> frameRtv;
+  ComPtr<ShaderResourceView> frameSrv;
   ComPtr<DepthStencilView> dsv;
   // The scene's translucent objects and the methods made for them, by name.
   std::vector<std::unique_ptr<TranslucentObject>> objects;
@@ -60,6 +69,30 @@ struct Translucency::Impl {
   MethodState* timed = nullptr;  // the method of the last timed frame, until LastTimes reads it
 
   void Stamp(MethodState& state, size_t index) { context->End(state.stamps[index].Get()); }
+};
+
+// The opaque objects shaded from the visibility buffer, for the frame's camera.
+class Translucency::FrameOpaque final : public oit::OpaqueScene {
+ public:
+  FrameOpaque(Impl& impl, const Camera& camera, const oit::FrameDesc& frame)
+      : impl_(impl), camera_(camera), frame_(frame) {}
+  void ShadeVisibility(DeviceContext* context) override {
+    fx::Effect* effect = impl_.sceneFx.Get();
+    RenderTargetView* rtv = impl_.frameRtv.Get();
+    context->OMSetRenderTargets(1, &rtv, nullptr);
+    SetInverseViewProj(effect, camera_);
+    effect->GetVariableByName("VisibilityIds")->AsShaderResource()->SetResource(impl_.visibilitySrv.Get());
+    effect->GetVariableByName("OpaqueVertices")->AsShaderResource()->SetResource(impl_.opaqueVerticesSrv.Get());
+    if (!DrawFullscreenPass(context, effect, frame_, "Visibility", "ShadeOpaque", &error)) return;
+    ShaderResourceView* none[2] = {};
+    context->PSSetShaderResources(0, 2, none);  // the next frame renders ids into the visibility buffer
+  }
+  std::string error;
+
+ private:
+  Impl& impl_;
+  const Camera& camera_;
+  oit::FrameDesc frame_;
 };
 
 // The objects as a method's passes draw them: every object, with the method of the frame.
@@ -185,6 +218,7 @@ bool Translucency::Initialize(Device* device, DeviceContext* context, const Tran
   if (!texture(DXGI_FORMAT_R8G8B8A8_UNORM, BIND_RENDER_TARGET | BIND_SHADER_RESOURCE, &m.frame) ||
       !texture(DXGI_FORMAT_D32_FLOAT, BIND_DEPTH_STENCIL, &m.depth) ||
       FAILED(device->CreateRenderTargetView(m.frame.Get(), nullptr, m.frameRtv.GetAddressOf())) ||
+      FAILED(device->CreateShaderResourceView(m.frame.Get(), nullptr, m.frameSrv.GetAddressOf())) ||
       FAILED(device->CreateDepthStencilView(m.depth.Get(), nullptr, m.dsv.GetAddressOf())))
     return fail("creating the frame and the depth buffer");
 
@@ -205,9 +239,14 @@ bool Translucency::Initialize(Device* device, DeviceContext* context, const Tran
   m.ambient = m.sceneFx->GetVariableByName("Ambient")->AsScalar();
   std::vector<BackdropVertex> scene = scene_->backdrop(s);
   m.opaqueVertices = UINT(scene.size());
-  BUFFER_DESC vb{UINT(scene.size() * sizeof(BackdropVertex)), USAGE_IMMUTABLE, BIND_VERTEX_BUFFER, 0, 0, 0};
+  // Also a shader resource: the visibility buffer's shading reads the triangles through a raw view.
+  const UINT vbBytes = UINT(scene.size() * sizeof(BackdropVertex));
+  BUFFER_DESC vb{vbBytes, USAGE_IMMUTABLE, BIND_VERTEX_BUFFER | BIND_SHADER_RESOURCE, 0,
+                 RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS, 0};
   SUBRESOURCE_DATA init{scene.data(), 0, 0};
-  if (FAILED(device->CreateBuffer(&vb, &init, m.opaqueVb.GetAddressOf()))) return fail("the opaque vertex buffer");
+  if (FAILED(device->CreateBuffer(&vb, &init, m.opaqueVb.GetAddressOf())) ||
+      !CreateRawView(device, m.opaqueVb.Get(), vbBytes, &m.opaqueVerticesSrv))
+    return fail("the opaque vertex buffer");
 
   QUERY_DESC disjoint{QUERY_TIMESTAMP_DISJOINT, 0}, statistics{QUERY_PIPELINE_STATISTICS, 0};
   if (FAILED(device->CreateQuery(&disjoint, m.disjoint.GetAddressOf())) ||
@@ -231,6 +270,7 @@ Translucency::MethodState* Translucency::Prepare(const oit::MethodInfo& info) {
                                settings_.msaaSamples};
   state.method = info.create(info, setup, &why);
   if (!state.method) return error_ = std::string(info.name) + ": " + why, nullptr;
+  if (state.method->Opaque() == oit::OpaqueShading::VisibilityBuffer && !PrepareVisibilityBuffer()) return nullptr;
   if (settings_.showLayer >= 0 && !state.method->ShowLayer(uint32_t(settings_.showLayer)))
     return error_ = std::string(info.name) + " keeps no layer " + std::to_string(settings_.showLayer), nullptr;
   for (auto& object : m.objects)
@@ -243,6 +283,19 @@ Translucency::MethodState* Translucency::Prepare(const oit::MethodInfo& info) {
       if (FAILED(m.device->CreateQuery(&stamp, q.GetAddressOf()))) return error_ = "the timestamp queries", nullptr;
   }
   return &m.methods.emplace(info.name, std::move(state)).first->second;
+}
+
+bool Translucency::PrepareVisibilityBuffer() {
+  Impl& m = *impl_;
+  if (m.visibility) return true;
+  if (!(m.visibilityIdsPass = FindPass(m.sceneFx.Get(), "Visibility", "Ids", &error_))) return false;
+  TEXTURE2D_DESC d{settings_.width, settings_.height, 1, 1, DXGI_FORMAT_R32_UINT, {1, 0}, USAGE_DEFAULT,
+                   BIND_RENDER_TARGET | BIND_SHADER_RESOURCE, 0, 0};
+  if (FAILED(m.device->CreateTexture2D(&d, nullptr, m.visibility.GetAddressOf())) ||
+      FAILED(m.device->CreateRenderTargetView(m.visibility.Get(), nullptr, m.visibilityRtv.GetAddressOf())) ||
+      FAILED(m.device->CreateShaderResourceView(m.visibility.Get(), nullptr, m.visibilitySrv.GetAddressOf())))
+    return error_ = "creating the visibility buffer failed", false;
+  return true;
 }
 
 const oit::Method* Translucency::MethodInstance(const oit::MethodInfo& method) const {
@@ -276,36 +329,64 @@ bool Translucency::RenderFrame(const oit::MethodInfo& method) {
     ctx->Begin(m.disjoint.Get());
     m.Stamp(*state, 0);
   }
-  OpaquePass();
+  const bool visibility = state->method->Opaque() == oit::OpaqueShading::VisibilityBuffer;
+  OpaquePass(visibility);
   if (timed) m.Stamp(*state, 1);
   for (auto& object : m.objects) object->Update(ctx, count);
   if (timed) m.Stamp(*state, 2);
   FrameGeometry geometry(m, method, camera_, {settings_.width, settings_.height, 1});
   FrameMarks marks(ctx, timed ? &state->stamps : nullptr, m.fragmentPassStatistics.Get(),
                    state->method->FragmentPass());
+  FrameOpaque opaque(m, camera_, {settings_.width, settings_.height, 1});
   FrameBackdrop backdrop(*this);
-  state->method->Render({ctx, {m.frameRtv.Get(), m.dsv.Get()}, &geometry, &marks, &backdrop});
+  state->method->Render({ctx,
+                         {m.frameRtv.Get(), m.dsv.Get(), m.frameSrv.Get()},
+                         &geometry,
+                         &marks,
+                         &backdrop,
+                         visibility ? &opaque : nullptr});
   marks.Finish();
   if (timed) {
     ctx->End(m.disjoint.Get());
     m.timed = state;
   }
   if (!geometry.error.empty()) return error_ = geometry.error, false;
+  if (!opaque.error.empty()) return error_ = opaque.error, false;
   ++frame_;
   return true;
 }
 
-// Opaque objects: scene.fx Opaque/Scene into the frame and the depth buffer.
-void Translucency::OpaquePass() { DrawBackdrop(impl_->frameRtv.Get(), impl_->dsv.Get()); }
-
-// The backdrop into `color` and `depth` (the frame's, or a method's own: oit::Backdrop).
-void Translucency::DrawBackdrop(RenderTargetView* color, DepthStencilView* depth) {
+// Opaque objects into the depth buffer and, forward (scene.fx Opaque/Scene), the
+// frame, or their triangle ids into the visibility buffer (Visibility/Ids: the frame
+// keeps the background until the method shades them).
+void Translucency::OpaquePass(bool visibilityBuffer) {
   Impl& m = *impl_;
   DeviceContext* ctx = m.context;
-  const float sky[4] = {0.55f, 0.65f, 0.8f, 1.0f}, grey[4] = {0.6f, 0.6f, 0.6f, 1.0f};
-  ctx->ClearRenderTargetView(color, settings_.neutralBackground ? grey : sky);
+  ctx->ClearRenderTargetView(m.frameRtv.Get(), settings_.neutralBackground ? kNeutralColour : kSkyColour);
+  ctx->ClearDepthStencilView(m.dsv.Get(), CLEAR_DEPTH, 1.0f, 0);
+  RenderTargetView* rtv = m.frameRtv.Get();
+  if (visibilityBuffer) {
+    const float background[4] = {0, 0, 0, 0};  // id 0: no triangle (D3D11 converts the floats to UINT)
+    ctx->ClearRenderTargetView(m.visibilityRtv.Get(), background);
+    rtv = m.visibilityRtv.Get();
+  }
+  DrawOpaqueObjects(rtv, m.dsv.Get(), visibilityBuffer);
+}
+
+// The backdrop, forward, into a method's own `color` and `depth` (oit::Backdrop),
+// cleared as the frame is.
+void Translucency::DrawBackdrop(RenderTargetView* color, DepthStencilView* depth) {
+  DeviceContext* ctx = impl_->context;
+  ctx->ClearRenderTargetView(color, settings_.neutralBackground ? kNeutralColour : kSkyColour);
   ctx->ClearDepthStencilView(depth, CLEAR_DEPTH, 1.0f, 0);
-  ctx->OMSetRenderTargets(1, &color, depth);
+  DrawOpaqueObjects(color, depth, false);
+}
+
+// The opaque objects into `target` and `depth`: scene.fx Opaque/Scene, or Visibility/Ids.
+void Translucency::DrawOpaqueObjects(RenderTargetView* target, DepthStencilView* depth, bool visibilityIds) {
+  Impl& m = *impl_;
+  DeviceContext* ctx = m.context;
+  ctx->OMSetRenderTargets(1, &target, depth);
   VIEWPORT viewport{0, 0, float(settings_.width), float(settings_.height), 0, 1};
   ctx->RSSetViewports(1, &viewport);
   SetMatrix(m.viewProj, camera_.viewProj);
@@ -316,7 +397,7 @@ void Translucency::DrawBackdrop(RenderTargetView* color, DepthStencilView* depth
   ctx->IASetInputLayout(m.opaqueLayout.Get());
   ctx->IASetVertexBuffers(0, 1, &vb, &stride, &offset);
   ctx->IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLELIST);
-  m.opaquePass->Apply(0, ctx);
+  (visibilityIds ? m.visibilityIdsPass : m.opaquePass)->Apply(0, ctx);
   ctx->Draw(m.opaqueVertices, 0);
 }
 

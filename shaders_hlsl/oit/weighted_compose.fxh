@@ -4,6 +4,7 @@
 // the method's composing blend state (Table 2 or 4).
 #ifndef OIT_WEIGHTED_COMPOSE_FXH
 #define OIT_WEIGHTED_COMPOSE_FXH
+#include "../fullscreen.hlsli"
 
 #include "fullscreen.hlsli"
 
@@ -19,7 +20,7 @@ float4 PSCompose(float4 pos : SV_Position) : SV_Target {
 
 #define COMPOSE_PASS(blend)                                   \
   pass Compose {                                              \
-    SetVertexShader(CompileShader(vs_5_0, VSFullscreen()));   \
+    SetVertexShader(CompileShader(vs_5_0, VSFullscreenTriangle()));   \
     SetGeometryShader(NULL);                                  \
     SetPixelShader(CompileShader(ps_5_0, PSCompose()));       \
     SetBlendState(blend, float4(0, 0, 0, 0), 0xFFFFFFFF);     \

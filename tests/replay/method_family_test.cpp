@@ -57,7 +57,8 @@ TEST_F(MethodFamilyTest, NeedsAreDescribedInWords) {
 }
 
 // Each method's passes, as Method::PassNames says, are the passes the frame applies
-// after the opaque pass and the object updates (their "technique/pass" markers).
+// after the opaque pass (forward or into the visibility buffer) and the object
+// updates (their "technique/pass" markers).
 TEST_F(MethodFamilyTest, EveryMethodAppliesThePassesItNames) {
   for (const char* scene : {"smoke", "shards"})
     for (const MethodInfo* method : renderer::oit::Methods()) {
@@ -73,7 +74,7 @@ TEST_F(MethodFamilyTest, EveryMethodAppliesThePassesItNames) {
       std::vector<std::string> passes;
       bool framesOpaquePass = true;
       for (const std::string& marker : trace.Filter({"SetMarker"})) {
-        if (marker == "SetMarker(Update/StreamOut)") continue;
+        if (marker == "SetMarker(Update/StreamOut)" || marker == "SetMarker(Visibility/Ids)") continue;
         if (marker == "SetMarker(Opaque/Scene)" && std::exchange(framesOpaquePass, false)) continue;
         passes.push_back(marker.substr(marker.find('/') + 1, marker.size() - marker.find('/') - 2));
       }
@@ -105,9 +106,11 @@ TEST_F(MethodFamilyTest, FramesRaiseNoHazardWarnings) {
 // averaged targets (8 + 8 + 2 per pixel); the additive variants keep no product,
 // the linear one an sRGB resolve (4 per pixel) besides.
 // Depth peeling, N = 8 layers: two R32_TYPELESS depth buffers (4 bytes each) and
-// per layer an R16G16B16A16_FLOAT colour and transmission (8 + 8). Dual depth
+// per layer an R16G16B16A16_FLOAT colour and opacity (8 + 8), and the
+// R32G32B32A32_FLOAT composite (16) the layers blend over. Dual depth
 // peeling: two R32G32_FLOAT depth ranges (8 each), two front colours and two front
-// opacities (R16G16B16A16_FLOAT, 8 each), one back colour and one back opacity (8 each).
+// opacities (R16G16B16A16_FLOAT, 8 each), one back colour and one back opacity (8 each),
+// and the same composite.
 TEST_F(MethodFamilyTest, MethodsReportTheMemoryOfTheirTargets) {
   auto t = Make("shards");
   ASSERT_TRUE(t);
@@ -125,8 +128,9 @@ TEST_F(MethodFamilyTest, MethodsReportTheMemoryOfTheirTargets) {
                    {"wboit-msaa-additive", pixels * 4 * (8 + 8 + 4 + 4)},
                    {"wboit-msaa-linear", pixels * 4 * (8 + 8 + 4 + 4) + pixels * 4},
                    {"wboit-msaa-exposure", pixels * 4 * (8 + 8 + 4 + 4)},
-                   {"depth-peeling", pixels * (2 * 4 + layers * (8 + 8))},
-                   {"dual-depth-peeling", pixels * (2 * 8 + 2 * 8 + 2 * 8 + 8 + 8)},
+                   // two depth buffers, a colour and an opacity layer (RGBA16F) each, the float32 composite
+                   {"depth-peeling", pixels * (2 * 4 + layers * (8 + 8) + 16)},
+                   {"dual-depth-peeling", pixels * (2 * 8 + 2 * 8 + 2 * 8 + 8 + 8 + 16)},
                    // a node pool of 16 a pixel (the default), 12 bytes a node, and a 4-byte head a pixel
                    {"linked-list", pixels * 16 * 12 + pixels * 4}};
   for (const auto& e : kExpected) {

@@ -31,6 +31,10 @@
 
 namespace renderer {
 
+// The colours the frame is cleared to before the opaque objects.
+inline constexpr float kSkyColour[4] = {0.55f, 0.65f, 0.8f, 1.0f};
+inline constexpr float kNeutralColour[4] = {0.6f, 0.6f, 0.6f, 1.0f};
+
 struct TranslucencySettings {
   std::string scene = "smoke";  // a name of Scenes()
   uint32_t width = 640, height = 360;
@@ -60,7 +64,7 @@ struct TranslucencySettings {
   oit::FragmentStorage fragmentStorage;
   // The multisampled methods (wboit-msaa and its variants): samples per pixel.
   uint32_t msaaSamples = oit::kDefaultMsaaSamples;
-  // Background.
+  // Background: the frame's clear colour (kSkyColour, or kNeutralColour) behind the backdrop.
   bool neutralBackground = false;  // a plain grey wall instead of coloured stripes
   bool timestamps = false;         // per-pass TIMESTAMP queries and the fragment pass's statistics (LastTimes)
   bool countParticles = false;     // SO_STATISTICS around every update (see particleCount)
@@ -116,11 +120,14 @@ class Translucency {
   struct Impl;
   struct MethodState;
   class FrameGeometry;
+  class FrameOpaque;
   Translucency() = default;
   bool Initialize(rhi::Device* device, rhi::DeviceContext* context, const TranslucencySettings& settings);
   MethodState* Prepare(const oit::MethodInfo& method);
-  void OpaquePass();
+  bool PrepareVisibilityBuffer();
+  void OpaquePass(bool visibilityBuffer);
   void DrawBackdrop(rhi::RenderTargetView* color, rhi::DepthStencilView* depth);
+  void DrawOpaqueObjects(rhi::RenderTargetView* target, rhi::DepthStencilView* depth, bool visibilityIds);
   class FrameBackdrop;
 
   TranslucencySettings settings_;

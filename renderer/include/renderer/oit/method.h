@@ -43,10 +43,31 @@ struct FrameDesc {
   uint32_t sampleCount = 1;
 };
 
+// How the frame driver draws the opaque objects before the method's passes.
+enum class OpaqueShading {
+  Forward,  // shaded as rasterized, into the frame
+  // Document 004: into a visibility buffer (the triangle id a pixel shows) and the
+  // depth; the frame holds only the background until the method calls
+  // OpaqueScene::ShadeVisibility, which shades those pixels from their triangles.
+  VisibilityBuffer,
+};
+
+// The opaque objects, for a method that shades them deferred (OpaqueShading::VisibilityBuffer).
+class OpaqueScene {
+ public:
+  // Shades every pixel the visibility buffer names into the frame (one full-screen
+  // pass; the background keeps its colour). Binds its own render target.
+  virtual void ShadeVisibility(rhi::DeviceContext* context) = 0;
+
+ protected:
+  ~OpaqueScene() = default;
+};
+
 // The frame, with the opaque objects drawn: the method leaves its composite in `frame`.
 struct FrameTargets {
   rhi::RenderTargetView* frame = nullptr;  // R8G8B8A8_UNORM
   rhi::DepthStencilView* depth = nullptr;  // D32_FLOAT opaque depth: tested, never written by translucency
+  rhi::ShaderResourceView* frameView = nullptr;  // the frame's texture, for a method that composites elsewhere
 };
 
 enum class DrawOrder {
@@ -106,6 +127,7 @@ struct RenderArgs {
   Geometry* geometry = nullptr;
   PassMarks* marks = nullptr;
   Backdrop* backdrop = nullptr;
+  OpaqueScene* opaque = nullptr;  // the opaque objects, when the method's Opaque() is VisibilityBuffer
 };
 
 class Method {
@@ -121,6 +143,8 @@ class Method {
   // frame counts (PassTimes::fragmentPassInvocations): the first for most methods; a
   // later one where the method first draws the opaque objects into targets of its own.
   virtual size_t FragmentPass() const { return 0; }
+  // How the opaque objects reach the frame before Render.
+  virtual OpaqueShading Opaque() const { return OpaqueShading::Forward; }
 
   // Methods that keep the translucent fragments as depth layers (depth peeling).
   // From the next Render on, the frame shows layer `layer` (0: the nearest) alone

@@ -10,7 +10,7 @@
 //       that keeps layers (depth-peeling) shows layer K alone, over neutral grey, in
 //       DIR/<scene>_<method>_layer<K>_<frame>.png.
 //       fire: flames drawn with additive blending for alpha and sorted (order-independent).
-//   replay --figures --out DIR [--size WxH] [--frames N]
+//   replay --figures --out DIR [--size WxH] [--frames N] [--document 001|003]
 //       fig1_smoke_alpha_wboit.png (alpha | WBOIT), fig_shards_wboit_colored_sorted.png
 //       (WBOIT | colored | sorted), fig_fire_additive_wboit_colored.png,
 //       fig3_teapot_alpha_sorted_wboit.png (document 002's teapot: alpha | sorted | WBOIT),
@@ -24,10 +24,17 @@
 //       nearest depth, RMSE / PSNR against the exact result, the extra target's memory (its
 //       scenes are measured there only, against the exact result instead of sorted).
 //       --document 003: that document's figures alone.
+//       document 001's on its triangles against the exact composite (prefix-sum):
+//       fig001_triangles_opacity1_exact_wboit_msaa.png (opacity 1 hides nothing),
+//       fig001_triangles_opacity_sweep_exact_above_wboit_msaa_below.png (0.1 .. 1, with RMSE),
+//       fig001_triangles_per_sample_per_pixel_differing.png (the differing pixels counted),
+//       fig001_triangles_wboit_additive_linear_exposure.png (the discussion's variants);
+//       --document 001: only these
 //   replay --bench [--scene demo|paper|heavy|complexity] [--frames N] [--warmup N] [--size WxH]
-//                  [--fragment-sizing exact|late]
+//                  [--fragment-sizing exact|late] [--msaa 4|8]
 //       per registered method: FPS and frame ms from the GPU (TIMESTAMP queries inside a
-//       TIMESTAMP_DISJOINT query, median over N frames), per-pass GPU ms, CPU ms per frame
+//       TIMESTAMP_DISJOINT query, median over N frames), per-pass GPU ms (the "3D pass" is
+//       the method's pass that draws the translucent objects, Method::FragmentPass), CPU ms per frame
 //       (RenderFrame's recording and submission, median), wall ms; WBOIT/alpha ratio.
 //       demo:  the smoke and shards demos at --size (default 640x360);
 //       paper: 1280x720, smoke of a few thousand particles over the opaque scene (Fig. 2);
@@ -38,6 +45,8 @@
 //       --warmup defaults to the updates the smoke needs to reach its steady state.
 //   --min-depth-slope M (--demo): document 003's m for moment-transparency-mindepth (default 100,
 //       per scene unit of view depth).
+//   --msaa 4|8 (--demo, --figures, --bench): the samples of the multisampled methods
+//       (wboit-msaa and its variants; default 4; 8 refused where the device has none).
 //   --fragment-sizing (--demo, --bench): how prefix-sum sizes its fragment buffer: exact
 //       (default: each frame's own total, the CPU waits for it) or late (earlier frames'
 //       totals, no wait; a frame that outgrows the buffer loses fragments, reported).
@@ -81,9 +90,22 @@ struct Options {
   uint32_t peelLayers = renderer::oit::kDefaultPeelLayers;
   int layer = -1;  // --layer: the layer shown alone
   renderer::oit::FragmentStorage fragmentStorage;  // --fragment-sizing
-  std::string document;  // --figures --document 003: that document's figures alone
+  std::string document;  // --figures --document 001|003: that document's figures alone
   float minDepthSlope = renderer::oit::kDefaultMinDepthSlope;  // --min-depth-slope: document 003's m
+  uint32_t msaaSamples = renderer::oit::kDefaultMsaaSamples;  // --msaa
 };
+
+// The settings of a replay of `scene` at --size with the methods' options.
+renderer::TranslucencySettings Settings(const Options& o, const std::string& scene) {
+  renderer::TranslucencySettings s;
+  s.scene = scene;
+  s.width = o.width, s.height = o.height;
+  s.peelLayers = o.peelLayers;
+  s.fragmentStorage = o.fragmentStorage;
+  s.msaaSamples = o.msaaSamples;
+  s.minDepthSlope = o.minDepthSlope;
+  return s;
+}
 
 std::unique_ptr<renderer::Translucency> Make(rhi::Device* device, rhi::DeviceContext* ctx,
                                              renderer::TranslucencySettings settings) {
@@ -132,13 +154,8 @@ std::vector<uint8_t> SideBySide(const std::vector<std::vector<uint8_t>>& images,
 }
 
 int RunOne(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
-  renderer::TranslucencySettings s;
-  s.scene = o.demo;
-  s.width = o.width, s.height = o.height;
-  s.peelLayers = o.peelLayers;
+  renderer::TranslucencySettings s = Settings(o, o.demo);
   s.showLayer = o.layer;
-  s.fragmentStorage = o.fragmentStorage;
-  s.minDepthSlope = o.minDepthSlope;
   const int frames = Frames(o, o.demo);
   auto t = Make(device, ctx, s);
   std::filesystem::create_directories(o.out);
@@ -155,8 +172,10 @@ int RunOne(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
 }
 
 int ListMethods() {
+  int width = 0;  // the longest name's
+  for (const MethodInfo* m : renderer::oit::Methods()) width = std::max(width, int(std::strlen(m->name)));
   for (const MethodInfo* m : renderer::oit::Methods())
-    std::printf("%-33s needs: %-44s %s\n", m->name, renderer::oit::DescribeNeeds(m->needs).c_str(), m->summary);
+    std::printf("%-*s needs: %-44s %s\n", width, m->name, renderer::oit::DescribeNeeds(m->needs).c_str(), m->summary);
   return 0;
 }
 
@@ -204,7 +223,7 @@ void WritePeelingFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Opt
     s.peelLayers = n;
     panels.push_back(Replay(device, ctx, s, peeling, frames));
     const double rmse = renderer::Rmse(panels.back(), exactImage);
-    std::printf("%-10s %-18s %10.3f %10.2f  (%u layers against the exact composite)\n", scene.c_str(), peeling.name,
+    std::printf("%-10s %-20s %10.3f %10.2f  (%u layers against the exact composite)\n", scene.c_str(), peeling.name,
                 rmse, renderer::Psnr(rmse), n);
   }
   panels.push_back(exactImage);
@@ -285,10 +304,98 @@ void WriteMomentFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Opti
   }
 }
 
+// `images` (each w x h) in rows of `perRow`, with 4-pixel white gaps.
+std::vector<uint8_t> Grid(const std::vector<std::vector<uint8_t>>& images, size_t perRow, uint32_t w, uint32_t h,
+                          uint32_t* outWidth, uint32_t* outHeight) {
+  const uint32_t gap = 4, rows = uint32_t((images.size() + perRow - 1) / perRow);
+  std::vector<uint8_t> out;
+  for (uint32_t r = 0; r < rows; ++r) {
+    std::vector<std::vector<uint8_t>> row(images.begin() + r * perRow,
+                                          images.begin() + std::min(images.size(), (r + 1) * perRow));
+    while (row.size() < perRow) row.emplace_back(size_t(w) * h * 4, 255);
+    if (r > 0) out.insert(out.end(), size_t(*outWidth) * gap * 4, 255);
+    const std::vector<uint8_t> strip = SideBySide(row, w, h, outWidth);
+    out.insert(out.end(), strip.begin(), strip.end());
+  }
+  *outHeight = rows * h + (rows - 1) * gap;
+  return out;
+}
+
+// The pixels where two frames differ, in red over `a` at a quarter of its brightness.
+std::vector<uint8_t> DifferingPixels(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, size_t* count) {
+  std::vector<uint8_t> map(a.size());
+  *count = 0;
+  for (size_t i = 0; i < a.size(); i += 4) {
+    const bool differs = a[i] != b[i] || a[i + 1] != b[i + 1] || a[i + 2] != b[i + 2];
+    *count += differs;
+    for (int c = 0; c < 3; ++c) map[i + c] = differs ? (c == 0 ? 255 : 0) : uint8_t(a[i + c] / 4);
+    map[i + 3] = 255;
+  }
+  return map;
+}
+
+// Document 001's figures on its triangles, against the exact composite (prefix-sum):
+//   the failure of opacity 1 (the front blue triangle): exact | WBOIT with MSAA;
+//   an opacity sweep, every triangle at 0.1 .. 1: exact above, WBOIT below;
+//   what the per-sample resolve buys: per sample | per pixel | the pixels that differ;
+//   the variants of its discussion: WBOIT | additive | additive linear (sRGB) | exposure.
+void WriteWboitMsaaFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
+  const MethodInfo &exact = Method("prefix-sum"), &wboit = Method("wboit-msaa");
+  const std::filesystem::path out(o.out);
+  const uint32_t w = o.width, h = o.height;
+  uint32_t fw = 0, fh = 0;
+  const renderer::TranslucencySettings s = Settings(o, "triangles");
+  const std::vector<std::vector<uint8_t>> failure = {Replay(device, ctx, s, exact, 1), Replay(device, ctx, s, wboit, 1)};
+  const auto failureFigure = SideBySide(failure, w, h, &fw);
+  WritePng((out / "fig001_triangles_opacity1_exact_wboit_msaa.png").string(), failureFigure, fw, h);
+
+  std::vector<std::vector<uint8_t>> exactRow, wboitRow;
+  for (float opacity : {0.1f, 0.25f, 0.5f, 0.75f, 1.0f}) {
+    renderer::TranslucencySettings sweep = s;
+    sweep.frontOpacity = sweep.triangleOpacity = opacity;
+    exactRow.push_back(Replay(device, ctx, sweep, exact, 1));
+    wboitRow.push_back(Replay(device, ctx, sweep, wboit, 1));
+    const double rmse = renderer::Rmse(wboitRow.back(), exactRow.back());
+    std::printf("%-10s %-20s %10.3f %10.2f  (every triangle at opacity %.2f, against prefix-sum)\n", "triangles",
+                wboit.name, rmse, renderer::Psnr(rmse), opacity);
+  }
+  exactRow.insert(exactRow.end(), wboitRow.begin(), wboitRow.end());
+  auto sweepFigure = Grid(exactRow, 5, w, h, &fw, &fh);
+  WritePng((out / "fig001_triangles_opacity_sweep_exact_above_wboit_msaa_below.png").string(), sweepFigure, fw, fh);
+
+  const std::vector<uint8_t>& perSample = failure[1];
+  const std::vector<uint8_t> perPixel = Replay(device, ctx, s, Method("wboit-msaa-per-pixel"), 1);
+  size_t differing = 0;
+  const std::vector<uint8_t> edges = DifferingPixels(perSample, perPixel, &differing);
+  std::printf("triangles: %zu of %u pixels differ between the per-sample and the per-pixel resolve (%ux MSAA)\n",
+              differing, w * h, o.msaaSamples);
+  const auto edgeFigure = SideBySide({perSample, perPixel, edges}, w, h, &fw);
+  WritePng((out / "fig001_triangles_per_sample_per_pixel_differing.png").string(), edgeFigure, fw, h);
+  int largest = 0;  // how far apart the two resolves are there, in 8-bit steps
+  for (size_t i = 0; i < perSample.size(); i += 4)
+    for (int c = 0; c < 3; ++c) largest = std::max(largest, std::abs(int(perSample[i + c]) - int(perPixel[i + c])));
+  std::printf("triangles: the two resolves differ by up to %d steps of 255 in a channel\n", largest);
+
+  std::vector<std::vector<uint8_t>> variants;
+  for (const char* name : {"wboit-msaa", "wboit-msaa-additive", "wboit-msaa-linear", "wboit-msaa-exposure"})
+    variants.push_back(Replay(device, ctx, s, Method(name), 1));
+  const std::vector<std::pair<const char*, const std::vector<uint8_t>*>> measured = {
+      {"wboit-msaa", &variants[0]},          {"wboit-msaa-per-pixel", &perPixel},
+      {"wboit-msaa-additive", &variants[1]}, {"wboit-msaa-linear", &variants[2]},
+      {"wboit-msaa-exposure", &variants[3]}};
+  for (const auto& [name, image] : measured) {
+    const double rmse = renderer::Rmse(*image, failure[0]);
+    std::printf("%-10s %-20s %10.3f %10.2f  (against prefix-sum)\n", "triangles", name, rmse, renderer::Psnr(rmse));
+  }
+  const auto variantFigure = SideBySide(variants, w, h, &fw);
+  WritePng((out / "fig001_triangles_wboit_additive_linear_exposure.png").string(), variantFigure, fw, h);
+}
+
 int RunFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
   std::filesystem::create_directories(o.out);
+  if (o.document == "001") return WriteWboitMsaaFigures(device, ctx, o), 0;
   if (o.document == "003") return WriteMomentFigures(device, ctx, o), 0;
-  std::printf("%-10s %-18s %10s %10s\n", "demo", "method", "RMSE", "PSNR dB");
+  std::printf("%-10s %-20s %10s %10s\n", "demo", "method", "RMSE", "PSNR dB");
   // Every scene with every method, measured against the sorted reference; the
   // figures are the source document's, each of named methods.
   struct Figure {
@@ -303,15 +410,13 @@ int RunFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
                             {"teapot", "fig3_teapot_alpha_sorted_wboit.png", {"alpha", "sorted", "wboit"}}};
   for (const renderer::SceneInfo* scene : renderer::Scenes()) {
     if (IsDocument003Scene(scene->name)) continue;  // WriteMomentFigures measures them against the exact result
-    renderer::TranslucencySettings s;
-    s.scene = scene->name;
-    s.width = o.width, s.height = o.height;
+    const renderer::TranslucencySettings s = Settings(o, scene->name);
     const int frames = Frames(o, scene->name);
     std::map<std::string, std::vector<uint8_t>> images;
     for (const MethodInfo* m : renderer::oit::Methods()) images[m->name] = Replay(device, ctx, s, *m, frames);
     for (const MethodInfo* m : renderer::oit::Methods()) {
       double rmse = renderer::Rmse(images[m->name], images["sorted"]);
-      std::printf("%-10s %-18s %10.3f %10.2f\n", scene->name, m->name, rmse, renderer::Psnr(rmse));
+      std::printf("%-10s %-20s %10.3f %10.2f\n", scene->name, m->name, rmse, renderer::Psnr(rmse));
     }
     for (const Figure& f : figures) {
       if (std::string(f.scene) != scene->name) continue;
@@ -324,6 +429,7 @@ int RunFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
   }
   WritePeelingFigures(device, ctx, o);
   WriteMomentFigures(device, ctx, o);
+  WriteWboitMsaaFigures(device, ctx, o);
   return 0;
 }
 
@@ -378,7 +484,7 @@ std::vector<BenchCase> BenchCases(const Options& o) {
 
 // The timed samples of one method (medians are taken at the end).
 struct MethodSamples {
-  std::vector<double> wall, cpu, opaque, update, firstPass, laterPasses, gpu, fragments;
+  std::vector<double> wall, cpu, opaque, update, fragmentPass, laterPasses, gpu, fragments;
   std::vector<std::vector<double>> passes;  // [pass][frame]
 };
 
@@ -393,12 +499,12 @@ void TimeFrame(renderer::Translucency& t, const MethodInfo& method, MethodSample
   samples.wall.push_back(std::chrono::duration<double, std::milli>(done - start).count());
   if (!times.valid) return;
   samples.opaque.push_back(times.opaqueMs), samples.update.push_back(times.updateMs);
-  double later = 0;
-  for (size_t i = 1; i < times.methodPassMs.size(); ++i) later += times.methodPassMs[i];
-  samples.firstPass.push_back(times.methodPassMs.at(0)), samples.laterPasses.push_back(later);
+  double later = 0;  // the passes after the fragment pass (a pass before it is in the total)
+  for (size_t i = times.fragmentPass + 1; i < times.methodPassMs.size(); ++i) later += times.methodPassMs[i];
+  samples.fragmentPass.push_back(times.methodPassMs.at(times.fragmentPass)), samples.laterPasses.push_back(later);
   samples.passes.resize(times.methodPassMs.size());
   for (size_t i = 0; i < times.methodPassMs.size(); ++i) samples.passes[i].push_back(times.methodPassMs[i]);
-  samples.gpu.push_back(times.totalMs), samples.fragments.push_back(double(times.firstPassFragments));
+  samples.gpu.push_back(times.totalMs), samples.fragments.push_back(double(times.fragmentPassInvocations));
 }
 
 // A replay of one method warmed up for the bench, or null (and `why`) when the
@@ -420,7 +526,7 @@ std::vector<BenchReplay> WarmedUpReplays(rhi::Device* device, rhi::DeviceContext
       t->LastTimes();
     }
     if (!made) {
-      std::printf("%-18s skipped: %s\n", method->name, t->error().c_str());
+      std::printf("%-20s skipped: %s\n", method->name, t->error().c_str());
       continue;
     }
     replays.push_back({method, std::move(t), {}});
@@ -442,14 +548,14 @@ void PrintBenchRow(BenchReplay& r, const renderer::TranslucencySettings& base, b
     t.LastTimes();
   }
   // The 3D pass's fill rate: fragments shaded (and blended) per second.
-  const double pass3dMs = Median(m.firstPass), fragmentCount = Median(m.fragments);
-  std::printf("%-18s %9.1f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9llu %10u %9.2f %9.2f %10.2f\n", r.method->name,
+  const double pass3dMs = Median(m.fragmentPass), fragmentCount = Median(m.fragments);
+  std::printf("%-20s %9.1f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9llu %10u %9.2f %9.2f %10.2f\n", r.method->name,
               gpuMs > 0 ? 1000.0 / gpuMs : 0.0, gpuMs, Median(m.opaque), Median(m.update), pass3dMs,
               Median(m.laterPasses), Median(m.cpu), Median(m.wall), static_cast<unsigned long long>(live),
               base.scene == "shards" ? base.shardCount : base.extraShards, fragmentCount / 1e6,
               pass3dMs > 0 ? fragmentCount / (pass3dMs * 1e6) : 0.0, mib);
   if (method->PassNames().size() > 2) {  // the passes of a many-pass method, by name
-    std::printf("%16s", "");
+    std::printf("%18s", "");
     for (size_t i = 0; i < m.passes.size(); ++i)
       std::printf(" %s %.3f", method->PassNames()[i].c_str(), Median(m.passes[i]));
     std::printf("\n");
@@ -465,6 +571,7 @@ int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
   for (const BenchCase& bc : BenchCases(o)) {
     renderer::TranslucencySettings base = bc.settings;
     base.fragmentStorage = o.fragmentStorage;
+    base.msaaSamples = o.msaaSamples;
     base.timestamps = true;
     base.countParticles = false;
     const bool particles = base.scene == "smoke" || base.scene == "fire";
@@ -473,7 +580,7 @@ int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
                                      : particles ? int(base.rule.minLife + base.rule.lifeRange) : 2;
     std::printf("\n%s: %ux%u, %s%s, %d warm-up frames, the methods' frames interleaved\n", bc.name.c_str(),
                 base.width, base.height, base.scene.c_str(), base.extraShards ? " + shards" : "", warmup);
-    std::printf("%-18s %9s %9s %9s %9s %9s %9s %9s %9s %9s %10s %9s %9s %10s\n", "method", "FPS(GPU)", "GPU ms",
+    std::printf("%-20s %9s %9s %9s %9s %9s %9s %9s %9s %9s %10s %9s %9s %10s\n", "method", "FPS(GPU)", "GPU ms",
                 "opaque", "update", "3D pass", "later", "CPU ms", "wall ms", "particles", "shards", "3D Mfrag",
                 "Gfrag/s", "MiB");
     // One replay per method, each warmed up; then frame i of every method in turn, so that
@@ -527,7 +634,8 @@ int main(int argc, char** argv) {
       o.figures = true;
     } else if (a == "--document") {
       o.document = next();
-      if (o.document != "003") Fail("--document takes 003 (the figures of one document alone)");
+      if (o.document != "001" && o.document != "003")
+        Fail("--document takes 001 or 003 (the figures of one document alone)");
     } else if (a == "--bench") {
       o.bench = true;
     } else if (a == "--scene") {
@@ -545,15 +653,18 @@ int main(int argc, char** argv) {
     } else if (a == "--min-depth-slope") {
       o.minDepthSlope = float(std::atof(next().c_str()));
       if (!(o.minDepthSlope > 0)) Fail("--min-depth-slope takes a positive m (per scene unit of view depth)");
+    } else if (a == "--msaa") {
+      o.msaaSamples = uint32_t(std::atoi(next().c_str()));
+      if (o.msaaSamples != 4 && o.msaaSamples != 8) Fail("--msaa takes 4 or 8 (samples per pixel)");
     } else if (a == "--layer") {
       o.layer = std::atoi(next().c_str());
       if (o.layer < 0) Fail("--layer takes a layer number, 0 the nearest");
     } else {
       Fail("unknown argument " + a +
            "\nusage: replay --demo SCENE --method METHOD [--frames N] [--size WxH] [--peel-layers N] [--layer K]"
-           " [--fragment-sizing exact|late] [--min-depth-slope M] --out DIR"
+           " [--fragment-sizing exact|late] [--min-depth-slope M] [--msaa 4|8] --out DIR"
            "\n       replay --list-methods | --list-scenes"
-           "\n       replay --figures [--document 003] --out DIR\n       replay --bench [--scene demo|paper|heavy|complexity] [--frames N] [--warmup N]"
+           "\n       replay --figures [--document 001|003] --out DIR\n       replay --bench [--scene demo|paper|heavy|complexity] [--frames N] [--warmup N]"
            "\n  scenes: " + renderer::SceneNames() + "\n  methods: " + renderer::oit::MethodNames());
     }
   }

@@ -260,6 +260,50 @@ const SceneInfo kComplexity{"complexity",
                             "document 004's depth complexity: depthComplexity camera-facing quads over the centre",
                             kComplexityTarget, kComplexityRadius, 1, GreyWall, BuildComplexity};
 
+// Document 001's overlapping triangles over black, in four depth layers. Left, the
+// article's failure case: blue in front (frontOpacity, 1 in the article), green
+// under it, white and cyan under green (triangleOpacity, 0.5). Right, four hues all
+// of triangleOpacity. The eye is the scripted camera's at frame 0 (the scene is static).
+constexpr glm::vec3 kTrianglesTarget{0.0f, 1.5f, 0.0f};
+constexpr float kTrianglesRadius = 6.0f;
+
+glm::vec3 TrianglesEye() { return ScriptedEye(kTrianglesTarget, kTrianglesRadius, 0); }
+
+std::vector<BackdropVertex> BlackWall(const TranslucencySettings&) {
+  const glm::vec3 eye = TrianglesEye(), forward = glm::normalize(kTrianglesTarget - eye);
+  const glm::vec3 right = glm::normalize(glm::cross(glm::vec3(0, 1, 0), forward)), up = glm::cross(forward, right);
+  const glm::vec3 centre = kTrianglesTarget + forward * 3.0f;  // 2 behind the farthest layer
+  std::vector<BackdropVertex> v;
+  AddQuad(&v, centre - 20.0f * (right + up), 40.0f * right, 40.0f * up, glm::vec3(0.0f));  // faces the eye
+  return v;
+}
+
+bool BuildTriangles(rhi::Device* device, const TranslucencySettings& s,
+                    std::vector<std::unique_ptr<TranslucentObject>>* objects, std::string* error) {
+  const float d = glm::length(kTrianglesTarget - TrianglesEye());  // layers at d - 1, d - 0.5, d, d + 0.5
+  auto material = [](glm::vec3 colour, float opacity) { return MeshMaterial{colour, colour, opacity, glm::vec3(0)}; };
+  const float front = s.frontOpacity, rest = s.triangleOpacity;
+  const std::vector<FacingTriangle> triangles = {
+      {{-2.6f, 0.45f}, 1.3f, d - 1.0f, material({0.1f, 0.25f, 1.0f}, front)},  // blue, in front
+      {{-2.0f, -0.2f}, 1.3f, d - 0.5f, material({0.1f, 0.9f, 0.2f}, rest)},    // green
+      {{-3.2f, -0.4f}, 1.2f, d, material({1.0f, 1.0f, 1.0f}, rest)},           // white
+      {{-2.4f, -1.0f}, 1.2f, d + 0.5f, material({0.1f, 0.9f, 0.95f}, rest)},   // cyan
+      {{2.0f, 0.45f}, 1.3f, d - 1.0f, material({1.0f, 0.15f, 0.1f}, rest)},    // red
+      {{2.7f, -0.2f}, 1.3f, d - 0.5f, material({1.0f, 0.85f, 0.1f}, rest)},    // yellow
+      {{1.5f, -0.4f}, 1.2f, d, material({0.9f, 0.2f, 0.9f}, rest)},            // magenta
+      {{2.3f, -1.0f}, 1.2f, d + 0.5f, material({0.2f, 0.45f, 1.0f}, rest)},    // light blue
+  };
+  auto meshes = CreateMeshes(Setup(device, s), CameraFacingTriangles(TrianglesEye(), kTrianglesTarget, triangles),
+                             error);
+  if (!meshes) return false;
+  objects->push_back(std::move(meshes));
+  return true;
+}
+
+const SceneInfo kTriangles{"triangles",
+                           "document 001's overlapping coloured triangles in four depth layers over black",
+                           kTrianglesTarget, kTrianglesRadius, 1, BlackWall, BuildTriangles};
+
 }  // namespace
 
 QuadStack ComplexityQuadStack(const TranslucencySettings& s) {
@@ -269,8 +313,8 @@ QuadStack ComplexityQuadStack(const TranslucencySettings& s) {
 }
 
 const std::vector<const SceneInfo*>& Scenes() {
-  static const std::vector<const SceneInfo*> scenes = {&kSmoke,  &kFire,  &kShards,    &kTeapot,
-                                                       &kComplexity, &kCubes, &kIceInCup, &kMagicCircle};
+  static const std::vector<const SceneInfo*> scenes = {&kSmoke, &kFire,      &kShards,    &kTeapot,      &kComplexity,
+                                                       &kCubes, &kIceInCup, &kMagicCircle, &kTriangles};
   return scenes;
 }
 

@@ -65,7 +65,7 @@ struct Translucency::Impl {
   std::vector<std::unique_ptr<TranslucentObject>> objects;
   std::map<std::string, MethodState> methods;
   // Timing.
-  ComPtr<Query> disjoint, firstPassStatistics;
+  ComPtr<Query> disjoint, fragmentPassStatistics;
   MethodState* timed = nullptr;  // the method of the last timed frame, until LastTimes reads it
 
   void Stamp(MethodState& state, size_t index) { context->End(state.stamps[index].Get()); }
@@ -137,18 +137,30 @@ class Translucency::FrameGeometry final : public oit::Geometry {
   oit::FrameDesc frame_;
 };
 
+// The opaque backdrop as a method draws it into its own targets.
+class Translucency::FrameBackdrop final : public oit::Backdrop {
+ public:
+  explicit FrameBackdrop(Translucency& translucency) : translucency_(translucency) {}
+  void Draw(DeviceContext*, RenderTargetView* color, DepthStencilView* depth) override {
+    translucency_.DrawBackdrop(color, depth);
+  }
+
+ private:
+  Translucency& translucency_;
+};
+
 namespace {
 
-// The method passes' timestamps, and the pipeline statistics of its first pass.
+// The method passes' timestamps, and the pipeline statistics of its fragment pass.
 class FrameMarks final : public oit::PassMarks {
  public:
-  FrameMarks(DeviceContext* context, std::vector<ComPtr<Query>>* stamps, Query* statistics)
-      : context_(context), stamps_(stamps), statistics_(statistics) {}
+  FrameMarks(DeviceContext* context, std::vector<ComPtr<Query>>* stamps, Query* statistics, size_t fragmentPass)
+      : context_(context), stamps_(stamps), statistics_(statistics), fragmentPass_(fragmentPass) {}
   void BeginPass(size_t index) override {
     if (!stamps_) return;
-    if (index == 1) EndStatistics();
+    if (index == fragmentPass_ + 1) EndStatistics();
     context_->End((*stamps_)[kStampsBeforeMethod + index].Get());
-    if (index == 0) {
+    if (index == fragmentPass_) {
       context_->Begin(statistics_);
       statisticsOpen_ = true;
     }
@@ -167,6 +179,7 @@ class FrameMarks final : public oit::PassMarks {
   DeviceContext* context_;
   std::vector<ComPtr<Query>>* stamps_;  // null: not timing
   Query* statistics_;
+  size_t fragmentPass_;
   bool statisticsOpen_ = false;
 };
 
@@ -237,7 +250,7 @@ bool Translucency::Initialize(Device* device, DeviceContext* context, const Tran
 
   QUERY_DESC disjoint{QUERY_TIMESTAMP_DISJOINT, 0}, statistics{QUERY_PIPELINE_STATISTICS, 0};
   if (FAILED(device->CreateQuery(&disjoint, m.disjoint.GetAddressOf())) ||
-      FAILED(device->CreateQuery(&statistics, m.firstPassStatistics.GetAddressOf())))
+      FAILED(device->CreateQuery(&statistics, m.fragmentPassStatistics.GetAddressOf())))
     return fail("the queries");
 
   return scene_->build(device, s, &m.objects, &error_) || fail(std::string("the scene ") + scene_->name);
@@ -254,7 +267,8 @@ Translucency::MethodState* Translucency::Prepare(const oit::MethodInfo& info) {
                                settings_.peelLayers,
                                uint32_t(m.objects.size()),
                                settings_.fragmentStorage,
-                               settings_.minDepthSlope};
+                               settings_.minDepthSlope,
+                               settings_.msaaSamples};
   state.method = info.create(info, setup, &why);
   if (!state.method) return error_ = std::string(info.name) + ": " + why, nullptr;
   if (state.method->Opaque() == oit::OpaqueShading::VisibilityBuffer && !PrepareVisibilityBuffer()) return nullptr;
@@ -324,11 +338,18 @@ bool Translucency::RenderFrame(const oit::MethodInfo& method) {
   for (auto& object : m.objects) object->Update(ctx, count);
   if (timed) m.Stamp(*state, 2);
   FrameGeometry geometry(m, method, camera_, {settings_.width, settings_.height, 1});
-  FrameMarks marks(ctx, timed ? &state->stamps : nullptr, m.firstPassStatistics.Get());
+  FrameMarks marks(ctx, timed ? &state->stamps : nullptr, m.fragmentPassStatistics.Get(),
+                   state->method->FragmentPass());
   FrameOpaque opaque(m, camera_, {settings_.width, settings_.height, 1});
-  state->method->Render(
-      {ctx, {m.frameRtv.Get(), m.dsv.Get(), m.frameSrv.Get()}, &geometry, &marks, visibility ? &opaque : nullptr,
-       camera_.nearPlane, camera_.farPlane});
+  FrameBackdrop backdrop(*this);
+  state->method->Render({ctx,
+                         {m.frameRtv.Get(), m.dsv.Get(), m.frameSrv.Get()},
+                         &geometry,
+                         &marks,
+                         &backdrop,
+                         visibility ? &opaque : nullptr,
+                         camera_.nearPlane,
+                         camera_.farPlane});
   marks.Finish();
   if (timed) {
     ctx->End(m.disjoint.Get());
@@ -354,7 +375,23 @@ void Translucency::OpaquePass(bool visibilityBuffer) {
     ctx->ClearRenderTargetView(m.visibilityRtv.Get(), background);
     rtv = m.visibilityRtv.Get();
   }
-  ctx->OMSetRenderTargets(1, &rtv, m.dsv.Get());
+  DrawOpaqueObjects(rtv, m.dsv.Get(), visibilityBuffer);
+}
+
+// The backdrop, forward, into a method's own `color` and `depth` (oit::Backdrop),
+// cleared as the frame is.
+void Translucency::DrawBackdrop(RenderTargetView* color, DepthStencilView* depth) {
+  DeviceContext* ctx = impl_->context;
+  ctx->ClearRenderTargetView(color, settings_.neutralBackground ? kNeutralColour : kSkyColour);
+  ctx->ClearDepthStencilView(depth, CLEAR_DEPTH, 1.0f, 0);
+  DrawOpaqueObjects(color, depth, false);
+}
+
+// The opaque objects into `target` and `depth`: scene.fx Opaque/Scene, or Visibility/Ids.
+void Translucency::DrawOpaqueObjects(RenderTargetView* target, DepthStencilView* depth, bool visibilityIds) {
+  Impl& m = *impl_;
+  DeviceContext* ctx = m.context;
+  ctx->OMSetRenderTargets(1, &target, depth);
   VIEWPORT viewport{0, 0, float(settings_.width), float(settings_.height), 0, 1};
   ctx->RSSetViewports(1, &viewport);
   SetMatrix(m.viewProj, camera_.viewProj);
@@ -365,7 +402,7 @@ void Translucency::OpaquePass(bool visibilityBuffer) {
   ctx->IASetInputLayout(m.opaqueLayout.Get());
   ctx->IASetVertexBuffers(0, 1, &vb, &stride, &offset);
   ctx->IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLELIST);
-  (visibilityBuffer ? m.visibilityIdsPass : m.opaquePass)->Apply(0, ctx);
+  (visibilityIds ? m.visibilityIdsPass : m.opaquePass)->Apply(0, ctx);
   ctx->Draw(m.opaqueVertices, 0);
 }
 
@@ -394,7 +431,7 @@ PassTimes Translucency::LastTimes() {
   bool ready = SUCCEEDED(WaitForData(m.context, m.disjoint.Get(), &disjoint));
   for (size_t i = 0; i < stamps.size(); ++i)
     ready = SUCCEEDED(WaitForData(m.context, state->stamps[i].Get(), &stamps[i])) && ready;
-  ready = SUCCEEDED(WaitForData(m.context, m.firstPassStatistics.Get(), &statistics)) && ready;
+  ready = SUCCEEDED(WaitForData(m.context, m.fragmentPassStatistics.Get(), &statistics)) && ready;
   if (!ready || disjoint.Disjoint || disjoint.Frequency == 0) return t;
   auto ms = [&](size_t a, size_t b) { return double(stamps[b] - stamps[a]) * 1000.0 / double(disjoint.Frequency); };
   t.valid = true;
@@ -402,7 +439,8 @@ PassTimes Translucency::LastTimes() {
   t.updateMs = ms(1, 2);
   for (size_t i = kStampsBeforeMethod; i + 1 < stamps.size(); ++i) t.methodPassMs.push_back(ms(i, i + 1));
   t.totalMs = ms(0, stamps.size() - 1);
-  t.firstPassFragments = statistics.PSInvocations;
+  t.fragmentPass = state->method->FragmentPass();
+  t.fragmentPassInvocations = statistics.PSInvocations;
   return t;
 }
 

@@ -64,15 +64,17 @@ float3 TransmissionFactor(float a, float3 t) {
 #endif
 }
 
-// The pass that draws the object with the pixel shader `ps` and the blend state `blend`.
-#define OBJECT_PASS(name, ps, blend)                         \
+// The pass that draws the object with the pixel shader `ps` and the blend state
+// `blend`, depth-tested with `depth` (OBJECT_PASS: DepthTestNoWrite).
+#define OBJECT_PASS_DEPTH(name, ps, blend, depth)            \
   pass name {                                                \
     SetVertexShader(CompileShader(vs_5_0, OBJECT_VS()));     \
     SetGeometryShader(OBJECT_GS);                            \
     SetPixelShader(CompileShader(ps_5_0, ps()));             \
     SetBlendState(blend, float4(0, 0, 0, 0), 0xFFFFFFFF);    \
-    SetDepthStencilState(DepthTestNoWrite, 0);               \
+    SetDepthStencilState(depth, 0);                          \
     SetRasterizerState(NoCull);                              \
   }
+#define OBJECT_PASS(name, ps, blend) OBJECT_PASS_DEPTH(name, ps, blend, DepthTestNoWrite)
 
 #endif

@@ -184,6 +184,13 @@ const SpecBlendRow kSpecTables[] = {
     {"Table 4 corrected", "colored", nullptr, "ColoredCompose", 0, BLEND_SRC_ALPHA, BLEND_ONE, BLEND_ZERO, BLEND_ONE},
     {"Table 4 as printed", "colored-literal", nullptr, "ColoredComposeLiteral", 0, BLEND_INV_SRC_ALPHA, BLEND_ONE,
      BLEND_ZERO, BLEND_ONE},
+    // Document 001 (SPEC.md "001"): glBlendFunci(0, ONE, ONE), glBlendFunci(1, DST_COLOR, ZERO);
+    // the alpha factors of the R16_FLOAT product (no alpha) are DEST_ALPHA/ZERO.
+    {"001 accum", "wboit-msaa", nullptr, "WboitMsaaAccumulate", 0, BLEND_ONE, BLEND_ONE, BLEND_ONE, BLEND_ONE},
+    {"001 product", "wboit-msaa", nullptr, "WboitMsaaAccumulate", 1, BLEND_DEST_COLOR, BLEND_ZERO, BLEND_DEST_ALPHA,
+     BLEND_ZERO},
+    {"001 additive", "wboit-msaa-additive", nullptr, "AdditiveAccumulate", 0, BLEND_ONE, BLEND_ONE, BLEND_ONE,
+     BLEND_ONE},
 };
 
 void PrintTo(const SpecBlendRow& row, std::ostream* os) { *os << row.table << " (" << row.block << ")"; }
@@ -219,7 +226,7 @@ TEST_P(SpecTableTest, TheEffectsStateBlockIsTheTable) {
   EXPECT_EQ(enabled, rowsOfBlock) << "targets blending in " << row.block;
 }
 
-INSTANTIATE_TEST_SUITE_P(Document000, SpecTableTest, ::testing::ValuesIn(kSpecTables),
+INSTANTIATE_TEST_SUITE_P(SpecTables, SpecTableTest, ::testing::ValuesIn(kSpecTables),
                          [](const ::testing::TestParamInfo<SpecBlendRow>& info) {
                            std::string name = info.param.table;
                            for (char& c : name)
@@ -239,6 +246,18 @@ TEST_F(TraceTest, TranslucentPassesTestDepthWithoutWritingIt) {
   EXPECT_EQ(d.DepthFunc, rhi::COMPARISON_LESS);
   ASSERT_EQ(e->GetVariableByName("NoDepth")->AsDepthStencil()->GetBackingStore(0, &d), rhi::S_OK);
   EXPECT_EQ(d.DepthEnable, rhi::FALSE);
+}
+
+// Document 001's translucent pass: glDepthFunc(GL_LEQUAL), glDepthMask(GL_FALSE).
+TEST_F(TraceTest, WboitMsaaTestsLessEqualWithoutWritingDepth) {
+  std::string error;
+  ComPtr<fx::Effect> e = renderer::oit::LoadMethodEffect(device.Get(), Method("wboit-msaa"), nullptr, {}, &error);
+  ASSERT_TRUE(e) << error;
+  rhi::DEPTH_STENCIL_DESC d;
+  ASSERT_EQ(e->GetVariableByName("DepthTestLessEqualNoWrite")->AsDepthStencil()->GetBackingStore(0, &d), rhi::S_OK);
+  EXPECT_EQ(d.DepthEnable, rhi::TRUE);
+  EXPECT_EQ(d.DepthWriteMask, rhi::DEPTH_WRITE_MASK_ZERO);
+  EXPECT_EQ(d.DepthFunc, rhi::COMPARISON_LESS_EQUAL);
 }
 
 }  // namespace

@@ -62,6 +62,19 @@ TriangleMesh Box(const glm::vec3& lo, const glm::vec3& hi, const MeshMaterial& m
 // A magic circle in the horizontal plane through `centre`, facing up: two rings (outer
 // radius `radius`, widths radius / 12) and a hexagram of bands between them.
 TriangleMesh MagicCircle(const glm::vec3& centre, float radius, const MeshMaterial& material);
+// Triangles facing an eye that looks at `target`, each an equilateral triangle
+// pointing up, for document 001's overlapping triangles. `offset` (right, up) from
+// the view axis and the circumradius `size` are measured in the plane through the
+// target (a triangle is scaled with its depth, so that the eye sees the same
+// layout at any depth); `depth` is its distance from the eye along the view axis.
+struct FacingTriangle {
+  glm::vec2 offset;
+  float size = 1.0f;
+  float depth = 1.0f;
+  MeshMaterial material;
+};
+std::vector<TriangleMesh> CameraFacingTriangles(const glm::vec3& eye, const glm::vec3& target,
+                                                const std::vector<FacingTriangle>& triangles);
 
 struct TranslucencySettings;
 // The complexity scene's stack (scenes.cpp): settings.depthComplexity quads from

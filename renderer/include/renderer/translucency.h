@@ -51,6 +51,10 @@ struct TranslucencySettings {
   // The complexity scene: how many translucent quads overlap over the centre of the
   // frame (1..64), the depth complexity that exact methods' per-pixel storage grows with.
   uint32_t depthComplexity = 8;
+  // The triangles scene (document 001): the opacity of its front blue triangle and
+  // of every other triangle (the article's failure case: 1 in front of 0.5).
+  float frontOpacity = 1.0f;
+  float triangleOpacity = 0.5f;
   // The peeling methods (document 002): the depth layers they keep, and, for a method
   // that keeps layers, one of them (0: the nearest) shown alone instead of the
   // composite (-1: the composite).
@@ -62,9 +66,11 @@ struct TranslucencySettings {
   float minDepthSlope = oit::kDefaultMinDepthSlope;
   // The camera's near and far planes; 0: the scene's (SceneInfo::nearPlane, farPlane).
   float nearPlane = 0, farPlane = 0;
+  // The multisampled methods (wboit-msaa and its variants): samples per pixel.
+  uint32_t msaaSamples = oit::kDefaultMsaaSamples;
   // Background: the frame's clear colour (kSkyColour, or kNeutralColour) behind the backdrop.
   bool neutralBackground = false;  // a plain grey wall instead of coloured stripes
-  bool timestamps = false;         // per-pass TIMESTAMP queries and the first method pass's statistics (LastTimes)
+  bool timestamps = false;         // per-pass TIMESTAMP queries and the fragment pass's statistics (LastTimes)
   bool countParticles = false;     // SO_STATISTICS around every update (see particleCount)
 };
 
@@ -72,9 +78,11 @@ struct PassTimes {
   bool valid = false;  // false when the disjoint query said disjoint
   double opaqueMs = 0, updateMs = 0, totalMs = 0;
   std::vector<double> methodPassMs;  // one per pass of the method, as its PassNames()
-  // Pixel-shader invocations of the method's first pass (PIPELINE_STATISTICS): the
-  // fragments it shades and blends, what a fill-bound pass's time follows.
-  uint64_t firstPassFragments = 0;
+  // Pixel-shader invocations of the method's pass that draws the translucent objects
+  // (Method::FragmentPass, PIPELINE_STATISTICS): the fragments it shades and blends,
+  // what a fill-bound pass's time follows.
+  size_t fragmentPass = 0;
+  uint64_t fragmentPassInvocations = 0;
 };
 
 class Translucency {
@@ -122,6 +130,9 @@ class Translucency {
   MethodState* Prepare(const oit::MethodInfo& method);
   bool PrepareVisibilityBuffer();
   void OpaquePass(bool visibilityBuffer);
+  void DrawBackdrop(rhi::RenderTargetView* color, rhi::DepthStencilView* depth);
+  void DrawOpaqueObjects(rhi::RenderTargetView* target, rhi::DepthStencilView* depth, bool visibilityIds);
+  class FrameBackdrop;
 
   TranslucencySettings settings_;
   const SceneInfo* scene_ = nullptr;

@@ -225,4 +225,28 @@ std::vector<TriangleMesh> CameraFacingQuads(const QuadStack& stack) {
   return quads;
 }
 
+std::vector<TriangleMesh> CameraFacingTriangles(const glm::vec3& eye, const glm::vec3& target,
+                                                const std::vector<FacingTriangle>& triangles) {
+  const glm::vec3 forward = glm::normalize(target - eye);
+  const glm::vec3 right = glm::normalize(glm::cross(glm::vec3(0, 1, 0), forward));  // left-handed: x = up x z
+  const glm::vec3 up = glm::cross(forward, right);
+  const float targetDepth = glm::length(target - eye);
+  std::vector<TriangleMesh> meshes;
+  for (const FacingTriangle& t : triangles) {
+    const float scale = t.depth / targetDepth;
+    const glm::vec3 centre = eye + forward * t.depth + scale * (right * t.offset.x + up * t.offset.y);
+    TriangleMesh mesh;
+    // Corners at 90, -30 and 210 degrees: clockwise as the eye sees them (front faces).
+    for (float degrees : {90.0f, -30.0f, 210.0f}) {
+      const float a = glm::radians(degrees);
+      mesh.positions.push_back(centre + scale * t.size * (std::cos(a) * right + std::sin(a) * up));
+      mesh.normals.push_back(-forward);
+    }
+    mesh.indices = {0, 1, 2};
+    mesh.material = t.material;
+    meshes.push_back(std::move(mesh));
+  }
+  return meshes;
+}
+
 }  // namespace renderer

@@ -10,6 +10,11 @@ namespace renderer::oit {
   X(kWboit)                     \
   X(kColored)                   \
   X(kColoredLiteral)            \
+  X(kWboitMsaa)                 \
+  X(kWboitMsaaPerPixel)         \
+  X(kWboitMsaaAdditive)         \
+  X(kWboitMsaaLinear)           \
+  X(kWboitMsaaExposure)         \
   X(kDepthPeeling)              \
   X(kDualDepthPeeling)          \
   X(kPrefixSum)                 \

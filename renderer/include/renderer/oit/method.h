@@ -107,11 +107,26 @@ class PassMarks {
   ~PassMarks() = default;
 };
 
+// The scene's opaque backdrop, which the frame driver draws into the frame
+// before the method runs. A method that needs the opaque objects in targets of
+// its own (document 001's multisampled colour and depth) draws them again here:
+// Draw clears `color` to the scene's background and `depth` to 1, binds them with
+// a full-frame viewport and draws the backdrop (scene.fx Opaque/Scene) with the
+// frame's camera. The targets may be multisampled; their size is the frame's.
+class Backdrop {
+ public:
+  virtual void Draw(rhi::DeviceContext* context, rhi::RenderTargetView* color, rhi::DepthStencilView* depth) = 0;
+
+ protected:
+  ~Backdrop() = default;
+};
+
 struct RenderArgs {
   rhi::DeviceContext* context = nullptr;
   FrameTargets targets;
   Geometry* geometry = nullptr;
   PassMarks* marks = nullptr;
+  Backdrop* backdrop = nullptr;
   OpaqueScene* opaque = nullptr;  // the opaque objects, when the method's Opaque() is VisibilityBuffer
   // The frame's projection planes, view depths in scene units (renderer::Camera):
   // what a method needs to turn window depth into view depth (the moment methods).
@@ -127,6 +142,10 @@ class Method {
   virtual uint64_t MemoryBytes() const = 0;
   // Its passes in the order Render runs them (the names of their effect passes).
   virtual const std::vector<std::string>& PassNames() const = 0;
+  // The pass that draws the translucent objects, whose pixel-shader invocations the
+  // frame counts (PassTimes::fragmentPassInvocations): the first for most methods; a
+  // later one where the method first draws the opaque objects into targets of its own.
+  virtual size_t FragmentPass() const { return 0; }
   // How the opaque objects reach the frame before Render.
   virtual OpaqueShading Opaque() const { return OpaqueShading::Forward; }
 
@@ -162,6 +181,11 @@ struct FragmentStorage {
 
 // Document 003's m, the slope of the minimum-depth correction (per scene unit of view depth).
 inline constexpr float kDefaultMinDepthSlope = 100.0f;
+// The samples per pixel of the multisampled methods (document 001's WBOIT with
+// MSAA) unless told otherwise: 4, which every D3D11 device and lavapipe have for
+// the formats those methods use; 8 where the device has it (they refuse it with
+// the reason where CheckMultisampleQualityLevels says it has not).
+inline constexpr uint32_t kDefaultMsaaSamples = 4;
 
 // What a method is created with.
 struct MethodSetup {
@@ -171,6 +195,7 @@ struct MethodSetup {
   uint32_t objectCount = 0;  // the scene's translucent objects
   FragmentStorage fragmentStorage;
   float minDepthSlope = kDefaultMinDepthSlope;  // moment-transparency-mindepth: m
+  uint32_t msaaSamples = kDefaultMsaaSamples;  // the multisampled methods' samples per pixel
 };
 
 using MethodFactory = std::unique_ptr<Method> (*)(const MethodInfo& info, const MethodSetup& setup,

@@ -165,6 +165,6 @@ std::unique_ptr<Method> CreateDepthPeeling(const MethodInfo& info, const MethodS
 extern const MethodInfo kDepthPeeling{"depth-peeling", "oit/depth_peeling.fxh", kNeedsDualSourceBlend,
                                       DrawOrder::AsSubmitted,
                                       "depth peeling: N exact layers composited back to front (document 002)",
-                                      CreateDepthPeeling};
+                                      CreateDepthPeeling, Exactness::kExactWithEnoughLayers};
 
 }  // namespace renderer::oit

@@ -1,0 +1,257 @@
+#include "compare_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <stb_image_write.h>
+
+#include "canvas.h"
+#include "renderer/image_metrics.h"
+
+using renderer::MethodResult;
+using renderer::SceneComparison;
+
+namespace {
+
+constexpr Rgb kWhite{255, 255, 255}, kInk{20, 20, 20}, kGrey{150, 150, 150}, kLight{225, 225, 225};
+
+std::string Format(const char* format, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
+bool WritePng(const std::string& path, const Canvas& canvas, std::string* error) {
+  if (stbi_write_png(path.c_str(), canvas.width(), canvas.height(), 4, canvas.pixels().data(), canvas.width() * 4))
+    return true;
+  return *error = "cannot write " + path, false;
+}
+
+bool Measured(const SceneComparison& scene, const MethodResult& r) { return scene.reference && !r.refused; }
+
+// ---- comparison.md ----
+
+std::string Row(const SceneComparison& scene, const MethodResult& r) {
+  std::string row = "| " + std::string(r.method->name) + " | ";
+  if (r.refused) return row + "refused: " + r.reason + " ||||||\n";
+  if (!Measured(scene, r)) return row + "no exact reference ||||| " + Format("%.1f", r.bytesPerPixel) + " |\n";
+  const bool reference = r.method == scene.reference;
+  row += Format("%.3f", r.rmse) + " | " + (std::isinf(r.psnr) ? std::string("∞") : Format("%.2f", r.psnr)) + " | " +
+         Format("%.4f", r.ssim) + " | " + Format("%.2f %%", 100.0 * r.shareOff) + " | " +
+         Format("%.1f", r.bytesPerPixel) + " | " + (r.timed ? Format("%.3f", r.gpuMs) : std::string("n/a")) + " | ";
+  if (reference) row += "the reference";
+  if (r.lostFragments) row += std::string(reference ? "; " : "") + std::to_string(r.lostFragments) + " fragments lost";
+  return row + " |\n";
+}
+
+}  // namespace
+
+std::string ParetoFile(const SceneComparison& scene) { return std::string("pareto_") + scene.scene->name + ".png"; }
+
+bool WriteComparisonMarkdown(const std::string& path, const CompareRun& run, const std::vector<SceneComparison>& scenes,
+                             std::string* error) {
+  std::ofstream md(path);
+  if (!md) return *error = "cannot write " + path, false;
+  const renderer::ComparisonSettings& s = run.settings;
+  md << "# Every method on every scene\n\n"
+     << "`" << run.command << "` on " << run.adapter << ", " << s.width << "x" << s.height << ".\n\n"
+     << "![every method on every scene](compare_grid.png)\n\n"
+     << "Each scene's reference is its exact result: the first registered exact method that accepts the scene "
+        "(`Exactness::kExact`, else `kExactWithEnoughLayers` peeled to the scene's layer count), which composites "
+        "every fragment with its object's own per-surface model (the shards: coloured transmission). Every method "
+        "renders the same frame of the replay.\n\n"
+     << "- **RMSE**: over R, G and B of the 8-bit sRGB output, in 8-bit steps; **PSNR**: 20 log10(255 / RMSE) "
+        "(peak 255).\n"
+     << "- **SSIM**: the mean over every 11x11 Gaussian window (sigma 1.5) inside the image of the luma "
+        "Y' = 0.299 R' + 0.587 G' + 0.114 B' of the sRGB values; K1 = 0.01, K2 = 0.03, L = 255.\n"
+     << "- **> 2/255**: the share of pixels where some channel is off by more than 2 steps.\n"
+     << "- **bytes/pixel**: the targets and buffers the method made for the frame (`Method::MemoryBytes`) per "
+        "pixel, at the layer count the row ran with.\n"
+     << "- **GPU ms**: the method's passes (not the opaque pass and the particle update) from TIMESTAMP queries, "
+        "the median of the " << s.timedFrames << " frames after the compared one.\n"
+     << "- **fragments**: the translucent fragments past the opaque depth test (pixel-shader invocations of the "
+        "reference's first pass).\n";
+  for (const SceneComparison& scene : scenes) {
+    md << "\n## " << scene.scene->name << "\n\n" << scene.scene->summary << ". Frame " << scene.frame << ", "
+       << scene.fragments << " translucent fragments";
+    if (scene.layers)
+      md << ", " << scene.layers << " depth layers" << (scene.layersComplete ? "" : " or more (peeled no deeper)")
+         << ": the peeling methods ran with " << scene.layers + (scene.layers & 1);
+    md << ". Reference: " << (scene.reference ? scene.reference->name : "none (no exact method accepts the scene)")
+       << ".\n\n"
+       << "| method | RMSE | PSNR dB | SSIM | > 2/255 | bytes/pixel | GPU ms | |\n"
+       << "|---|---:|---:|---:|---:|---:|---:|---|\n";
+    for (const MethodResult& r : scene.methods) md << Row(scene, r);
+    if (scene.reference) md << "\n![" << scene.scene->name << ": error against GPU time](" << ParetoFile(scene) << ")\n";
+  }
+  return bool(md) || (*error = "cannot write " + path, false);
+}
+
+// ---- compare_grid.png ----
+
+namespace {
+
+constexpr int kGap = 4, kPad = 8, kCaption = 14;
+
+// `text` in lines that fit `width` pixels, broken after hyphens and spaces.
+std::vector<std::string> Wrap(const std::string& text, int width) {
+  std::vector<std::string> lines{""};
+  size_t start = 0;
+  while (start < text.size()) {
+    size_t end = text.find_first_of("- ", start);
+    end = end == std::string::npos ? text.size() : end + 1;
+    const std::string word = text.substr(start, end - start);
+    if (!lines.back().empty() && Canvas::TextWidth(lines.back() + word) > width) lines.emplace_back();
+    lines.back() += word;
+    start = end;
+  }
+  return lines;
+}
+
+void HeatLegend(Canvas& c, int x, int y) {
+  const int w = 256, h = 10;
+  for (int i = 0; i < w; ++i) {
+    uint8_t rgb[3];
+    renderer::HeatColour(double(i) * kHeatFullScale / (w - 1), kHeatFullScale, rgb);
+    c.Fill(x + i, y, 1, h, {rgb[0], rgb[1], rgb[2]});
+  }
+  c.Text(x, y + h + 3, "0", kInk);
+  const std::string full = std::to_string(kHeatFullScale) + "/255";
+  c.Text(x + w - Canvas::TextWidth(full), y + h + 3, full, kInk);
+  c.Text(x + w + 12, y, "error heat map: the largest channel difference to the exact reference, square-root scale",
+         kInk);
+}
+
+}  // namespace
+
+bool WriteCompareGrid(const std::string& path, const CompareRun& run, const std::vector<SceneComparison>& scenes,
+                      std::string* error) {
+  const int w = int(run.settings.width), h = int(run.settings.height);
+  const size_t columns = scenes.empty() ? 0 : scenes.front().methods.size();
+  int labelWidth = Canvas::TextWidth("reference:");
+  for (const SceneComparison& s : scenes)
+    labelWidth = std::max({labelWidth, Canvas::TextWidth(s.scene->name, 2),
+                           Canvas::TextWidth(s.reference ? s.reference->name : "none")});
+  labelWidth += 2 * kPad;
+  size_t headerLines = 1;
+  for (const MethodResult& r : scenes.empty() ? std::vector<MethodResult>{} : scenes.front().methods)
+    headerLines = std::max(headerLines, Wrap(r.method->name, w).size());
+  const int header = int(headerLines) * (Canvas::TextHeight() + 2) + kPad;
+  const int block = 2 * (h + kCaption) + kGap + 2 * kPad;  // images, heat maps, their captions
+  const int legend = 40;
+  Canvas c(labelWidth + int(columns) * (w + kGap) + kPad, header + int(scenes.size()) * block + legend, kWhite);
+
+  for (size_t i = 0; i < columns; ++i) {
+    int y = kPad / 2;
+    for (const std::string& line : Wrap(scenes.front().methods[i].method->name, w)) {
+      c.Text(labelWidth + int(i) * (w + kGap), y, line, kInk);
+      y += Canvas::TextHeight() + 2;
+    }
+  }
+  for (size_t row = 0; row < scenes.size(); ++row) {
+    const SceneComparison& scene = scenes[row];
+    const int top = header + int(row) * block;
+    c.Fill(0, top, c.width(), 1, kLight);
+    c.Text(kPad, top + kPad, scene.scene->name, kInk, 2);
+    c.Text(kPad, top + kPad + h + kCaption + kGap, "error", kInk);
+    c.Text(kPad, top + kPad + h + kCaption + kGap + 14, "reference:", kGrey);
+    c.Text(kPad, top + kPad + h + kCaption + kGap + 26, scene.reference ? scene.reference->name : "none", kGrey);
+    for (size_t i = 0; i < scene.methods.size(); ++i) {
+      const MethodResult& r = scene.methods[i];
+      const int x = labelWidth + int(i) * (w + kGap), imageY = top + kPad, heatY = imageY + h + kCaption + kGap;
+      if (r.refused) {
+        c.Fill(x, imageY, w, h, kLight);
+        c.Text(x + 4, imageY + 4, "refused", kInk);
+        int y = imageY + 18;
+        for (const std::string& line : Wrap(r.reason, w - 8))
+          if (y + Canvas::TextHeight() < imageY + h) c.Text(x + 4, y, line, kGrey), y += Canvas::TextHeight() + 1;
+        continue;
+      }
+      c.Paste(r.image, w, h, x, imageY);
+      if (!Measured(scene, r)) continue;
+      const MethodResult& reference = *scene.Find(scene.reference->name);
+      c.Paste(renderer::ErrorHeatMap(r.image, reference.image, kHeatFullScale), w, h, x, heatY);
+      const std::string caption = r.method == scene.reference
+                                      ? "reference"
+                                      : "RMSE " + Format("%.2f", r.rmse) + "  SSIM " + Format("%.3f", r.ssim);
+      c.Text(x, heatY + h + 2, caption, kInk);
+    }
+  }
+  HeatLegend(c, kPad, c.height() - legend + 8);
+  return WritePng(path, c, error);
+}
+
+// ---- pareto_<scene>.png ----
+
+namespace {
+
+// A round step for about `ticks` ticks over [0, max].
+double TickStep(double max, int ticks) {
+  const double raw = max / ticks, magnitude = std::pow(10.0, std::floor(std::log10(raw)));
+  for (double m : {1.0, 2.0, 5.0, 10.0})
+    if (raw <= m * magnitude) return m * magnitude;
+  return 10 * magnitude;
+}
+
+bool WritePareto(const std::string& path, const SceneComparison& scene, std::string* error) {
+  std::vector<const MethodResult*> points;
+  for (const MethodResult& r : scene.methods)
+    if (Measured(scene, r) && r.timed) points.push_back(&r);
+  const int width = 640, height = 420, left = 64, right = 24, top = 36, bottom = 48;
+  Canvas c(width, height, kWhite);
+  const int plotW = width - left - right, plotH = height - top - bottom;
+  double maxMs = 0, maxRmse = 0;
+  for (const MethodResult* r : points) maxMs = std::max(maxMs, r->gpuMs), maxRmse = std::max(maxRmse, r->rmse);
+  const double xStep = TickStep(maxMs > 0 ? maxMs * 1.1 : 1, 5), yStep = TickStep(maxRmse > 0 ? maxRmse * 1.1 : 1, 5);
+  const double xMax = std::ceil((maxMs > 0 ? maxMs * 1.1 : 1) / xStep) * xStep;
+  const double yMax = std::ceil((maxRmse > 0 ? maxRmse * 1.1 : 1) / yStep) * yStep;
+  auto px = [&](double ms) { return left + int(std::lround(ms / xMax * plotW)); };
+  auto py = [&](double rmse) { return top + plotH - int(std::lround(rmse / yMax * plotH)); };
+
+  c.Text(left, 10, std::string(scene.scene->name) + ": RMSE to the exact reference (" + scene.reference->name +
+                       ") against GPU ms of the method's passes", kInk);
+  for (double x = 0; x <= xMax + xStep / 2; x += xStep) {
+    c.Fill(px(x), top, 1, plotH, kLight);
+    const std::string label = Format("%g", x);
+    c.Text(px(x) - Canvas::TextWidth(label) / 2, top + plotH + 6, label, kInk);
+  }
+  for (double y = 0; y <= yMax + yStep / 2; y += yStep) {
+    c.Fill(left, py(y), plotW, 1, kLight);
+    const std::string label = Format("%g", y);
+    c.Text(left - 6 - Canvas::TextWidth(label), py(y) - 4, label, kInk);
+  }
+  c.Line(left, top, left, top + plotH, kInk), c.Line(left, top + plotH, left + plotW, top + plotH, kInk);
+  c.Text(left + plotW / 2 - 20, height - 20, "GPU ms", kInk);
+  c.Text(6, top - 14, "RMSE (8-bit steps)", kInk);
+
+  // The Pareto front: each point that no faster (or equally fast) point matches in error.
+  std::vector<const MethodResult*> byTime = points;
+  std::sort(byTime.begin(), byTime.end(), [](auto* a, auto* b) { return a->gpuMs < b->gpuMs || (a->gpuMs == b->gpuMs && a->rmse < b->rmse); });
+  std::vector<const MethodResult*> front;
+  for (const MethodResult* r : byTime)
+    if (front.empty() || r->rmse < front.back()->rmse) front.push_back(r);
+  const Rgb frontColour{200, 40, 30}, otherColour{60, 90, 160};
+  for (size_t i = 1; i < front.size(); ++i)
+    c.Line(px(front[i - 1]->gpuMs), py(front[i - 1]->rmse), px(front[i]->gpuMs), py(front[i]->rmse), frontColour, 2);
+  for (const MethodResult* r : points) {
+    const bool onFront = std::find(front.begin(), front.end(), r) != front.end();
+    c.Point(px(r->gpuMs), py(r->rmse), 4, onFront ? frontColour : otherColour);
+    const std::string label = r->method->name;
+    const int lx = std::min(px(r->gpuMs) + 7, width - 2 - Canvas::TextWidth(label));
+    c.Text(lx, py(r->rmse) - 10, label, onFront ? frontColour : kInk);
+  }
+  c.Text(left + plotW - 200, top + 6, "red: the Pareto front", frontColour);
+  return WritePng(path, c, error);
+}
+
+}  // namespace
+
+bool WriteParetoPlots(const std::string& dir, const std::vector<SceneComparison>& scenes, std::string* error) {
+  for (const SceneComparison& scene : scenes)
+    if (scene.reference && !WritePareto((std::filesystem::path(dir) / ParetoFile(scene)).string(), scene, error))
+      return false;
+  return true;
+}

@@ -71,11 +71,11 @@ bool WriteComparisonMarkdown(const std::string& path, const CompareRun& run, con
      << "- **bytes/pixel**: the targets and buffers the method made for the frame (`Method::MemoryBytes`) per "
         "pixel, at the layer count the row ran with.\n"
      << "- **GPU ms**: the method's passes (not the opaque pass and the particle update) from TIMESTAMP queries, "
-        "the median of the " << s.timedFrames << " frames after the compared one.\n"
+        "the median over the method drawing the compared frame again " << s.timedFrames << " more time(s).\n"
      << "- **fragments**: the translucent fragments past the opaque depth test (pixel-shader invocations of the "
         "reference's first pass).\n";
   for (const SceneComparison& scene : scenes) {
-    md << "\n## " << scene.scene->name << "\n\n" << scene.scene->summary << ". Frame " << scene.frame << ", "
+    md << "\n## " << scene.scene->name << "\n\n*" << scene.scene->summary << "*. Frame " << scene.frame << ", "
        << scene.fragments << " translucent fragments";
     if (scene.layers)
       md << ", " << scene.layers << " depth layers" << (scene.layersComplete ? "" : " or more (peeled no deeper)")
@@ -188,35 +188,41 @@ bool WriteCompareGrid(const std::string& path, const CompareRun& run, const std:
 
 namespace {
 
-// A round step for about `ticks` ticks over [0, max].
-double TickStep(double max, int ticks) {
-  const double raw = max / ticks, magnitude = std::pow(10.0, std::floor(std::log10(raw)));
-  for (double m : {1.0, 2.0, 5.0, 10.0})
-    if (raw <= m * magnitude) return m * magnitude;
-  return 10 * magnitude;
-}
+struct Box {
+  int x, y, w, h;
+  bool Overlaps(const Box& o) const { return x < o.x + o.w && o.x < x + w && y < o.y + o.h && o.y < y + h; }
+};
 
+// GPU ms on a log scale (the methods span four decades), RMSE on a linear one.
 bool WritePareto(const std::string& path, const SceneComparison& scene, std::string* error) {
   std::vector<const MethodResult*> points;
   for (const MethodResult& r : scene.methods)
-    if (Measured(scene, r) && r.timed) points.push_back(&r);
+    if (Measured(scene, r) && r.timed && r.gpuMs > 0) points.push_back(&r);
   const int width = 640, height = 420, left = 64, right = 24, top = 36, bottom = 48;
   Canvas c(width, height, kWhite);
   const int plotW = width - left - right, plotH = height - top - bottom;
-  double maxMs = 0, maxRmse = 0;
-  for (const MethodResult* r : points) maxMs = std::max(maxMs, r->gpuMs), maxRmse = std::max(maxRmse, r->rmse);
-  const double xStep = TickStep(maxMs > 0 ? maxMs * 1.1 : 1, 5), yStep = TickStep(maxRmse > 0 ? maxRmse * 1.1 : 1, 5);
-  const double xMax = std::ceil((maxMs > 0 ? maxMs * 1.1 : 1) / xStep) * xStep;
-  const double yMax = std::ceil((maxRmse > 0 ? maxRmse * 1.1 : 1) / yStep) * yStep;
-  auto px = [&](double ms) { return left + int(std::lround(ms / xMax * plotW)); };
+  double minMs = 1e30, maxMs = 0, maxRmse = 0;
+  for (const MethodResult* r : points)
+    minMs = std::min(minMs, r->gpuMs), maxMs = std::max(maxMs, r->gpuMs), maxRmse = std::max(maxRmse, r->rmse);
+  const int firstDecade = points.empty() ? 0 : int(std::floor(std::log10(minMs)));
+  const int lastDecade = points.empty() ? 1 : std::max(firstDecade + 1, int(std::ceil(std::log10(maxMs))));
+  double yStep = 1;
+  for (double step : {1.0, 2.0, 5.0, 10.0, 20.0, 50.0})
+    if ((yStep = step) * 5 >= maxRmse * 1.05) break;
+  const double yMax = std::max(1.0, std::ceil(maxRmse * 1.05 / yStep)) * yStep;
+  auto px = [&](double ms) {
+    return left + int(std::lround((std::log10(ms) - firstDecade) / (lastDecade - firstDecade) * plotW));
+  };
   auto py = [&](double rmse) { return top + plotH - int(std::lround(rmse / yMax * plotH)); };
 
   c.Text(left, 10, std::string(scene.scene->name) + ": RMSE to the exact reference (" + scene.reference->name +
                        ") against GPU ms of the method's passes", kInk);
-  for (double x = 0; x <= xMax + xStep / 2; x += xStep) {
-    c.Fill(px(x), top, 1, plotH, kLight);
-    const std::string label = Format("%g", x);
-    c.Text(px(x) - Canvas::TextWidth(label) / 2, top + plotH + 6, label, kInk);
+  for (int decade = firstDecade; decade <= lastDecade; ++decade) {
+    const double ms = std::pow(10.0, decade);
+    c.Fill(px(ms), top, 1, plotH, kLight);
+    for (int m = 2; m < 10 && decade < lastDecade; ++m) c.Fill(px(m * ms), top + plotH - 4, 1, 4, kGrey);
+    const std::string label = Format("%g", ms);
+    c.Text(px(ms) - Canvas::TextWidth(label) / 2, top + plotH + 6, label, kInk);
   }
   for (double y = 0; y <= yMax + yStep / 2; y += yStep) {
     c.Fill(left, py(y), plotW, 1, kLight);
@@ -224,26 +230,34 @@ bool WritePareto(const std::string& path, const SceneComparison& scene, std::str
     c.Text(left - 6 - Canvas::TextWidth(label), py(y) - 4, label, kInk);
   }
   c.Line(left, top, left, top + plotH, kInk), c.Line(left, top + plotH, left + plotW, top + plotH, kInk);
-  c.Text(left + plotW / 2 - 20, height - 20, "GPU ms", kInk);
+  c.Text(left + plotW / 2 - 60, height - 20, "GPU ms (log scale)", kInk);
   c.Text(6, top - 14, "RMSE (8-bit steps)", kInk);
 
   // The Pareto front: each point that no faster (or equally fast) point matches in error.
   std::vector<const MethodResult*> byTime = points;
-  std::sort(byTime.begin(), byTime.end(), [](auto* a, auto* b) { return a->gpuMs < b->gpuMs || (a->gpuMs == b->gpuMs && a->rmse < b->rmse); });
+  std::sort(byTime.begin(), byTime.end(),
+            [](auto* a, auto* b) { return a->gpuMs < b->gpuMs || (a->gpuMs == b->gpuMs && a->rmse < b->rmse); });
   std::vector<const MethodResult*> front;
   for (const MethodResult* r : byTime)
     if (front.empty() || r->rmse < front.back()->rmse) front.push_back(r);
   const Rgb frontColour{200, 40, 30}, otherColour{60, 90, 160};
   for (size_t i = 1; i < front.size(); ++i)
     c.Line(px(front[i - 1]->gpuMs), py(front[i - 1]->rmse), px(front[i]->gpuMs), py(front[i]->rmse), frontColour, 2);
-  for (const MethodResult* r : points) {
+  std::vector<Box> labels;
+  for (const MethodResult* r : byTime) {
     const bool onFront = std::find(front.begin(), front.end(), r) != front.end();
     c.Point(px(r->gpuMs), py(r->rmse), 4, onFront ? frontColour : otherColour);
+    // Beside its point, moved down past the labels already placed.
     const std::string label = r->method->name;
-    const int lx = std::min(px(r->gpuMs) + 7, width - 2 - Canvas::TextWidth(label));
-    c.Text(lx, py(r->rmse) - 10, label, onFront ? frontColour : kInk);
+    Box box{std::min(px(r->gpuMs) + 7, width - 2 - Canvas::TextWidth(label)), py(r->rmse) - 10,
+            Canvas::TextWidth(label), Canvas::TextHeight()};
+    for (int tries = 0; tries < 12 && std::any_of(labels.begin(), labels.end(), [&](const Box& b) { return b.Overlaps(box); });
+         ++tries)
+      box.y += Canvas::TextHeight();
+    labels.push_back(box);
+    c.Text(box.x, box.y, label, onFront ? frontColour : kInk);
   }
-  c.Text(left + plotW - 200, top + 6, "red: the Pareto front", frontColour);
+  c.Text(left + plotW - 140, top + 6, "red: the Pareto front", frontColour);
   return WritePng(path, c, error);
 }
 

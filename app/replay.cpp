@@ -34,8 +34,8 @@
 //   replay --compare [--size WxH] [--out DIR] [--frames N] [--peel-layers N]
 //       every registered method on every registered scene at each scene's default frame,
 //       against the scene's exact reference (renderer/comparison.h): RMSE, PSNR, SSIM,
-//       pixels off by > 2/255, bytes per pixel, fragments, GPU ms (median of N timed
-//       frames after the compared one, default 5) -> DIR/comparison.md,
+//       pixels off by > 2/255, bytes per pixel, fragments, GPU ms (the median of N timed
+//       draws of the compared frame, default 5) -> DIR/comparison.md,
 //       DIR/compare_grid.png and DIR/pareto_<scene>.png (app/compare_report.h).
 //       --peel-layers: the most layers the peeling methods get (default 64; a scene
 //       with fewer gets its own count).

@@ -1,6 +1,5 @@
 #include "renderer/translucency.h"
 
-
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "fx/effect.h"

@@ -32,7 +32,7 @@ namespace renderer {
 struct ComparisonSettings {
   uint32_t width = 320, height = 180;
   int frames = -1;       // the compared frame is frame frames-1; <= 0: the scene's defaultFrames
-  int timedFrames = 5;   // GPU ms: the median over this many frames after the compared one
+  int timedFrames = 5;   // GPU ms: the median over the method drawing the compared frame again this many times
   // Changes a scene's replay settings before it is made (the tests' smaller smoke).
   std::function<void(TranslucencySettings&)> adjust;
   // The scenes compared, by name; empty: every registered scene.

@@ -36,12 +36,14 @@ bool Measured(const SceneComparison& scene, const MethodResult& r) { return scen
 
 std::string Row(const SceneComparison& scene, const MethodResult& r) {
   std::string row = "| " + std::string(r.method->name) + " | ";
-  if (r.refused) return row + "refused: " + r.reason + " ||||||\n";
-  if (!Measured(scene, r)) return row + "no exact reference ||||| " + Format("%.1f", r.bytesPerPixel) + " |\n";
+  const std::string ms = r.timed ? Format("%.3f", r.gpuMs) : std::string("n/a");
+  if (r.refused) return row + "refused: " + r.reason + " | | | | | | |\n";
+  if (!Measured(scene, r))
+    return row + "| | | | " + Format("%.1f", r.bytesPerPixel) + " | " + ms + " | no exact reference |\n";
   const bool reference = r.method == scene.reference;
   row += Format("%.3f", r.rmse) + " | " + (std::isinf(r.psnr) ? std::string("∞") : Format("%.2f", r.psnr)) + " | " +
          Format("%.4f", r.ssim) + " | " + Format("%.2f %%", 100.0 * r.shareOff) + " | " +
-         Format("%.1f", r.bytesPerPixel) + " | " + (r.timed ? Format("%.3f", r.gpuMs) : std::string("n/a")) + " | ";
+         Format("%.1f", r.bytesPerPixel) + " | " + ms + " | ";
   if (reference) row += "the reference";
   if (r.lostFragments) row += std::string(reference ? "; " : "") + std::to_string(r.lostFragments) + " fragments lost";
   return row + " |\n";

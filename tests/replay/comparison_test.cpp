@@ -129,8 +129,12 @@ constexpr uint32_t kWidth = 64, kHeight = 36;
 
 // Upper bounds of the RMSE (8-bit steps) to the scene's exact reference at kWidth x
 // kHeight, the smoke of ComparisonSettings' adjust below: a little above what lavapipe
-// measured (in the comments). Record a new method's rows after looking at its images
-// (replay --compare) and the measured values this test prints.
+// measured (in the comments). Recorded after viewing replay --compare's grid at 160x90
+// (each image beside prefix-sum's, each heat map: unsorted alpha's errors where the
+// newest smoke covers older puffs, WBOIT's and colored's over dense layers, the
+// blended methods' over every shard, the peeling methods' speckle of roundings).
+// Record a new method's rows after looking at its images the same way and at the
+// values this test prints.
 struct ErrorBound {
   const char* scene;
   const char* method;

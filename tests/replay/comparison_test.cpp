@@ -280,6 +280,33 @@ TEST_P(ComparisonTest, ExactAtZeroApproximateWithinBoundsOrderingsAsClaimed) {
   }
 }
 
+// A scene of two objects (the smoke plus shards): the fragment-buffer methods refuse it
+// with their reason, and the reference falls back to the first method exact with
+// enough layers.
+TEST_F(GpuTest, ComparisonOfASceneTheFragmentBufferMethodsRefuse) {
+  renderer::ComparisonSettings settings = SmallComparison("smoke");
+  settings.adjust = [](renderer::TranslucencySettings& t) {
+    t.rule = {24, 2, 15, 20};
+    t.extraShards = 30;
+  };
+  std::vector<SceneComparison> results;
+  std::string error;
+  ASSERT_TRUE(renderer::CompareMethods(device.Get(), context.Get(), settings, &results, &error)) << error;
+  ASSERT_EQ(results.size(), 1u);
+  const SceneComparison& scene = results.front();
+  size_t refused = 0;
+  for (const MethodResult& r : scene.methods) {
+    if (!r.refused) continue;
+    ++refused;
+    EXPECT_EQ(r.method->exactness, renderer::oit::Exactness::kExact) << r.method->name;
+    EXPECT_NE(r.reason.find("object"), std::string::npos) << r.method->name << ": " << r.reason;
+  }
+  EXPECT_GE(refused, 1u);
+  ASSERT_NE(scene.reference, nullptr);
+  EXPECT_EQ(scene.reference->exactness, renderer::oit::Exactness::kExactWithEnoughLayers);
+  EXPECT_EQ(scene.Find(scene.reference->name)->rmse, 0.0);
+}
+
 std::vector<std::string> SceneNames() {
   std::vector<std::string> names;
   for (const renderer::SceneInfo* s : renderer::Scenes()) names.push_back(s->name);

@@ -96,35 +96,35 @@ bool WriteComparisonMarkdown(const std::string& path, const CompareRun& run, con
 
 namespace {
 
-constexpr int kGap = 4, kPad = 8, kCaption = 14;
+constexpr int kGap = 4;
 
-// `text` in lines that fit `width` pixels, broken after hyphens and spaces.
-std::vector<std::string> Wrap(const std::string& text, int width) {
+// `text` in lines that fit `width` pixels at `scale`, broken after hyphens and spaces.
+std::vector<std::string> Wrap(const std::string& text, int width, int scale) {
   std::vector<std::string> lines{""};
   size_t start = 0;
   while (start < text.size()) {
     size_t end = text.find_first_of("- ", start);
     end = end == std::string::npos ? text.size() : end + 1;
     const std::string word = text.substr(start, end - start);
-    if (!lines.back().empty() && Canvas::TextWidth(lines.back() + word) > width) lines.emplace_back();
+    if (!lines.back().empty() && Canvas::TextWidth(lines.back() + word, scale) > width) lines.emplace_back();
     lines.back() += word;
     start = end;
   }
   return lines;
 }
 
-void HeatLegend(Canvas& c, int x, int y) {
-  const int w = 256, h = 10;
+void HeatLegend(Canvas& c, int x, int y, int scale) {
+  const int w = 256 * scale, h = 10 * scale;
   for (int i = 0; i < w; ++i) {
     uint8_t rgb[3];
     renderer::HeatColour(double(i) * kHeatFullScale / (w - 1), kHeatFullScale, rgb);
     c.Fill(x + i, y, 1, h, {rgb[0], rgb[1], rgb[2]});
   }
-  c.Text(x, y + h + 3, "0", kInk);
+  c.Text(x, y + h + 3, "0", kInk, scale);
   const std::string full = std::to_string(kHeatFullScale) + "/255";
-  c.Text(x + w - Canvas::TextWidth(full), y + h + 3, full, kInk);
-  c.Text(x + w + 12, y, "error heat map: the largest channel difference to the exact reference, square-root scale",
-         kInk);
+  c.Text(x + w - Canvas::TextWidth(full, scale), y + h + 3, full, kInk, scale);
+  c.Text(x + w + 12 * scale, y,
+         "error heat map: the largest channel difference to the exact reference, square-root scale", kInk, scale);
 }
 
 }  // namespace
@@ -132,57 +132,61 @@ void HeatLegend(Canvas& c, int x, int y) {
 bool WriteCompareGrid(const std::string& path, const CompareRun& run, const std::vector<SceneComparison>& scenes,
                       std::string* error) {
   const int w = int(run.settings.width), h = int(run.settings.height);
+  // Text twice the glyphs' size in cells wide enough for it to stay legible when the
+  // grid is shown scaled down.
+  const int scale = w >= 240 ? 2 : 1, line = Canvas::TextHeight(scale) + 2 * scale;
+  const int pad = 8 * scale, caption = line + 2 * scale;
   const size_t columns = scenes.empty() ? 0 : scenes.front().methods.size();
-  int labelWidth = Canvas::TextWidth("reference:");
+  int labelWidth = Canvas::TextWidth("reference:", scale);
   for (const SceneComparison& s : scenes)
-    labelWidth = std::max({labelWidth, Canvas::TextWidth(s.scene->name, 2),
-                           Canvas::TextWidth(s.reference ? s.reference->name : "none")});
-  labelWidth += 2 * kPad;
+    labelWidth = std::max({labelWidth, Canvas::TextWidth(s.scene->name, 2 * scale),
+                           Canvas::TextWidth(s.reference ? s.reference->name : "none", scale)});
+  labelWidth += 2 * pad;
   size_t headerLines = 1;
   for (const MethodResult& r : scenes.empty() ? std::vector<MethodResult>{} : scenes.front().methods)
-    headerLines = std::max(headerLines, Wrap(r.method->name, w).size());
-  const int header = int(headerLines) * (Canvas::TextHeight() + 2) + kPad;
-  const int block = 2 * (h + kCaption) + kGap + 2 * kPad;  // images, heat maps, their captions
-  const int legend = 40;
-  Canvas c(labelWidth + int(columns) * (w + kGap) + kPad, header + int(scenes.size()) * block + legend, kWhite);
+    headerLines = std::max(headerLines, Wrap(r.method->name, w, scale).size());
+  const int header = int(headerLines) * line + pad;
+  const int block = 2 * (h + caption) + kGap + 2 * pad;  // images, heat maps, their captions
+  const int legend = 40 * scale;
+  Canvas c(labelWidth + int(columns) * (w + kGap) + pad, header + int(scenes.size()) * block + legend, kWhite);
 
   for (size_t i = 0; i < columns; ++i) {
-    int y = kPad / 2;
-    for (const std::string& line : Wrap(scenes.front().methods[i].method->name, w)) {
-      c.Text(labelWidth + int(i) * (w + kGap), y, line, kInk);
-      y += Canvas::TextHeight() + 2;
+    int y = pad / 2;
+    for (const std::string& text : Wrap(scenes.front().methods[i].method->name, w, scale)) {
+      c.Text(labelWidth + int(i) * (w + kGap), y, text, kInk, scale);
+      y += line;
     }
   }
   for (size_t row = 0; row < scenes.size(); ++row) {
     const SceneComparison& scene = scenes[row];
-    const int top = header + int(row) * block;
-    c.Fill(0, top, c.width(), 1, kLight);
-    c.Text(kPad, top + kPad, scene.scene->name, kInk, 2);
-    c.Text(kPad, top + kPad + h + kCaption + kGap, "error", kInk);
-    c.Text(kPad, top + kPad + h + kCaption + kGap + 14, "reference:", kGrey);
-    c.Text(kPad, top + kPad + h + kCaption + kGap + 26, scene.reference ? scene.reference->name : "none", kGrey);
+    const int top = header + int(row) * block, heatTop = top + pad + h + caption + kGap;
+    c.Fill(0, top, c.width(), scale, kLight);
+    c.Text(pad, top + pad, scene.scene->name, kInk, 2 * scale);
+    c.Text(pad, heatTop, "error", kInk, scale);
+    c.Text(pad, heatTop + line, "reference:", kGrey, scale);
+    c.Text(pad, heatTop + 2 * line, scene.reference ? scene.reference->name : "none", kGrey, scale);
     for (size_t i = 0; i < scene.methods.size(); ++i) {
       const MethodResult& r = scene.methods[i];
-      const int x = labelWidth + int(i) * (w + kGap), imageY = top + kPad, heatY = imageY + h + kCaption + kGap;
+      const int x = labelWidth + int(i) * (w + kGap), imageY = top + pad;
       if (r.refused) {
         c.Fill(x, imageY, w, h, kLight);
-        c.Text(x + 4, imageY + 4, "refused", kInk);
-        int y = imageY + 18;
-        for (const std::string& line : Wrap(r.reason, w - 8))
-          if (y + Canvas::TextHeight() < imageY + h) c.Text(x + 4, y, line, kGrey), y += Canvas::TextHeight() + 1;
+        c.Text(x + 4, imageY + 4, "refused", kInk, scale);
+        int y = imageY + 4 + line;
+        for (const std::string& text : Wrap(r.reason, w - 8, 1))  // the reason small: it is long
+          if (y + Canvas::TextHeight() < imageY + h) c.Text(x + 4, y, text, kGrey), y += Canvas::TextHeight() + 1;
         continue;
       }
       c.Paste(r.image, w, h, x, imageY);
       if (!Measured(scene, r)) continue;
       const MethodResult& reference = *scene.Find(scene.reference->name);
-      c.Paste(renderer::ErrorHeatMap(r.image, reference.image, kHeatFullScale), w, h, x, heatY);
-      const std::string caption = r.method == scene.reference
-                                      ? "reference"
-                                      : "RMSE " + Format("%.2f", r.rmse) + "  SSIM " + Format("%.3f", r.ssim);
-      c.Text(x, heatY + h + 2, caption, kInk);
+      c.Paste(renderer::ErrorHeatMap(r.image, reference.image, kHeatFullScale), w, h, x, heatTop);
+      const std::string text = r.method == scene.reference
+                                   ? "reference"
+                                   : "RMSE " + Format("%.2f", r.rmse) + "  SSIM " + Format("%.3f", r.ssim);
+      c.Text(x, heatTop + h + 2 * scale, text, kInk, scale);
     }
   }
-  HeatLegend(c, kPad, c.height() - legend + 8);
+  HeatLegend(c, pad, c.height() - legend + 4 * scale, scale);
   return WritePng(path, c, error);
 }
 

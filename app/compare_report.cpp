@@ -180,9 +180,10 @@ bool WriteCompareGrid(const std::string& path, const CompareRun& run, const std:
       if (!Measured(scene, r)) continue;
       const MethodResult& reference = *scene.Find(scene.reference->name);
       c.Paste(renderer::ErrorHeatMap(r.image, reference.image, kHeatFullScale), w, h, x, heatTop);
-      const std::string text = r.method == scene.reference
-                                   ? "reference"
-                                   : "RMSE " + Format("%.2f", r.rmse) + "  SSIM " + Format("%.3f", r.ssim);
+      std::string text = r.method == scene.reference
+                             ? "reference"
+                             : "RMSE " + Format("%.2f", r.rmse) + "  SSIM " + Format("%.3f", r.ssim);
+      if (Canvas::TextWidth(text, scale) > w) text = "RMSE " + Format("%.2f", r.rmse);  // a narrow cell
       c.Text(x, heatTop + h + 2 * scale, text, kInk, scale);
     }
   }

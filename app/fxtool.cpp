@@ -9,7 +9,9 @@
 //
 // `info` needs no GPU: it runs the effect front end and compiles every shader
 // with the HLSL compiler. `run` creates an rhi::Device (RHI_DEVICE picks the
-// Vulkan device), loads the effect with the runtime and draws or dispatches.
+// Vulkan device), loads the effect with the runtime and draws or dispatches;
+// what it needs to know of the effect comes from FX11's reflection
+// (Get*ShaderDesc, GetTypeDesc), not from a second parse.
 // Errors print as "file:line:col: error: message" and the exit code is 1
 // (2 for bad usage, 3 for device/validation failures).
 #include <algorithm>
@@ -20,6 +22,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -31,6 +34,7 @@
 #include "fx/effect.h"
 #include "fx/effect_parser.h"
 #include "fx/gs_isolation.h"
+#include "fx/so_decl.h"
 #include "fxtool_names.h"
 #include "hlsl/hlsl_compiler.h"
 #include "rhi/query_wait.h"
@@ -288,6 +292,23 @@ std::string ShaderLine(const fx::CompiledShader& sh) {
   return s;
 }
 
+// `<indent>@Name = value` lines, one per annotation.
+void PrintAnnotations(const std::vector<fx::Annotation>& annotations, const char* indent) {
+  for (const fx::Annotation& a : annotations) {
+    std::string value;
+    if (a.type == "string") {
+      value = "\"" + a.stringValue + "\"";
+    } else {
+      for (size_t i = 0; i < a.values.size(); ++i) {
+        char number[32];
+        std::snprintf(number, sizeof number, "%g", a.values[i]);
+        value += (i ? ", " : "") + std::string(number);
+      }
+    }
+    std::printf("%s@%s %s = %s\n", indent, a.type.c_str(), a.name.c_str(), value.c_str());
+  }
+}
+
 // Compiles every distinct (entry, profile) of the effect; prints errors. Returns the failure count.
 int CompileAll(const Options& o, const fx::EffectAst& ast, std::map<int, std::string>* status) {
   int failures = 0;
@@ -335,8 +356,10 @@ int Info(const Options& o) {
     std::printf("technique%d %s", t.version, t.name.c_str());
     if (!t.group.empty()) std::printf(" (fxgroup %s)", t.group.c_str());
     std::printf("  [%s]\n", Where(t.where).c_str());
+    PrintAnnotations(t.annotations, "  ");
     for (const fx::Pass& p : t.passes) {
       std::printf("  pass %s\n", p.name.empty() ? "(unnamed)" : p.name.c_str());
+      PrintAnnotations(p.annotations, "    ");
       for (const fx::PassAssignment& a : p.assignments) {
         if (auto* s = std::get_if<fx::ShaderAssignment>(&a.value)) {
           if (s->shader < 0) {
@@ -364,12 +387,14 @@ int Info(const Options& o) {
     for (const fx::ConstantVariable& v : cb.variables) {
       std::printf("  %s %s offset=%u size=%u%s%s\n", TypeText(v.type).c_str(), v.name.c_str(), v.offset, v.type.size,
                   v.semantic.empty() ? "" : (" semantic=" + v.semantic).c_str(), v.hasInitializer ? " (initialized)" : "");
+      PrintAnnotations(v.annotations, "    ");
     }
   }
   for (const fx::ResourceVariable& r : ast.resources) {
     std::printf("resource %s%s%s%s\n", r.name.c_str(), r.templateArgs.empty() ? "" : (" <" + r.templateArgs + ">").c_str(),
                 fx::IsUnorderedAccess(r.kind) ? " (UAV)" : "",
                 r.reg ? (" register=" + std::string(1, r.reg->kind) + std::to_string(r.reg->index)).c_str() : "");
+    PrintAnnotations(r.annotations, "  ");
   }
   for (const fx::SamplerVariable& s : ast.samplers)
     std::printf("sampler %s%s\n", s.name.c_str(), s.comparison ? " (comparison)" : "");
@@ -377,7 +402,10 @@ int Info(const Options& o) {
     std::printf("blendstate %s%s\n", v.name.c_str(), v.descs.size() > 1 ? ("[" + std::to_string(v.descs.size()) + "]").c_str() : "");
   for (const fx::DepthStencilStateVariable& v : ast.depthStencilStates) std::printf("depthstencilstate %s\n", v.name.c_str());
   for (const fx::RasterizerStateVariable& v : ast.rasterizerStates) std::printf("rasterizerstate %s\n", v.name.c_str());
-  for (const fx::StringVariable& v : ast.strings) std::printf("string %s\n", v.name.c_str());
+  for (const fx::StringVariable& v : ast.strings) {
+    std::printf("string %s\n", v.name.c_str());
+    PrintAnnotations(v.annotations, "  ");
+  }
   if (failures) {
     std::fprintf(stderr, "fxtool: %d shader(s) failed to compile\n", failures);
     return 1;
@@ -413,19 +441,29 @@ std::string JsonString(const std::string& s) {
   return out + "\"";
 }
 
-// The pass of the AST that the runtime's pass corresponds to.
-const fx::Pass* FindAstPass(const fx::EffectAst& ast, const std::string& technique, unsigned index) {
-  for (const fx::Technique& t : ast.techniques)
-    if (t.name == technique) return index < t.passes.size() ? &t.passes[index] : nullptr;
-  return nullptr;
+using PassShaderGetter = rhi::HRESULT (fx::EffectPass::*)(fx::PASS_SHADER_DESC*);
+
+// What `pass` sets on a stage, through FX11's reflection (Get*ShaderDesc, then
+// GetShaderDesc); nullopt for NULL or a stage it leaves alone.
+std::optional<fx::EFFECT_SHADER_DESC> StageShader(fx::EffectPass* pass, PassShaderGetter getter) {
+  fx::PASS_SHADER_DESC where;
+  fx::EFFECT_SHADER_DESC desc;
+  if (!rhi::SUCCEEDED((pass->*getter)(&where)) ||
+      !rhi::SUCCEEDED(where.pShaderVariable->GetShaderDesc(where.ShaderIndex, &desc)) || desc.BytecodeLength == 0)
+    return std::nullopt;
+  return desc;
 }
 
-const fx::CompiledShader* StageShader(const fx::EffectAst& ast, const fx::Pass& pass, fx::ShaderStage stage) {
-  const fx::CompiledShader* found = nullptr;
-  for (const fx::PassAssignment& a : pass.assignments)
-    if (auto* s = std::get_if<fx::ShaderAssignment>(&a.value))
-      if (s->stage == stage) found = s->shader >= 0 ? &ast.shaders[s->shader] : nullptr;
-  return found;
+std::string TypeNameOf(fx::EffectVariable* v) {
+  fx::EFFECT_TYPE_DESC t;
+  return rhi::SUCCEEDED(v->GetTypeDesc(&t)) && t.TypeName ? t.TypeName : "";
+}
+
+// The template argument of a type name such as "RWStructuredBuffer<float4>"; "" when none.
+std::string TemplateArgument(const std::string& typeName) {
+  size_t open = typeName.find('<');
+  if (open == std::string::npos || typeName.back() != '>') return "";
+  return typeName.substr(open + 1, typeName.size() - open - 2);
 }
 
 bool SetVariable(fx::Effect* effect, const std::string& name, const std::vector<double>& values) {
@@ -652,10 +690,10 @@ bool SaveTarget(const std::string& dir, const std::string& name, const Target& t
 }
 
 int Run(const Options& o) {
-  std::optional<fx::EffectAst> parsed = Parse(o);
-  if (!parsed) return 1;
-  const fx::EffectAst& ast = *parsed;
-
+  if (!std::filesystem::exists(o.file)) {
+    std::fprintf(stderr, "%s:0:0: error: cannot open the effect file\n", o.file.c_str());
+    return 1;
+  }
   rhi::DEVICE_OPTIONS dopt;
   dopt.EnableValidation = o.validation ? rhi::TRUE : rhi::FALSE;
   dopt.OnMessage = [](rhi::MESSAGE_CATEGORY, rhi::MESSAGE_SEVERITY severity, const char* text) {
@@ -707,13 +745,16 @@ int Run(const Options& o) {
 
     // Targets: render targets, or (for a compute pass) UAVs bound to the effect's
     // RWTexture2D variables in declaration order.
-    std::vector<const fx::ResourceVariable*> rwTextures;
-    for (const fx::ResourceVariable& r : ast.resources)
-      if (r.kind == fx::ResourceKind::RWTexture2D) rwTextures.push_back(&r);
+    std::vector<fx::EffectVariable*> rwTextures;
+    fx::EFFECT_DESC edesc;
+    effect->GetDesc(&edesc);
+    for (unsigned i = 0; i < edesc.GlobalVariables; ++i) {
+      std::string type = TypeNameOf(effect->GetVariableByIndex(i));
+      if (type == "RWTexture2D" || type.rfind("RWTexture2D<", 0) == 0) rwTextures.push_back(effect->GetVariableByIndex(i));
+    }
     bool anyCompute = false, anyGraphics = false;
     for (unsigned pi : passes) {
-      const fx::Pass* ap = FindAstPass(ast, o.technique, pi);
-      if (ap && StageShader(ast, *ap, fx::ShaderStage::Compute)) anyCompute = true;
+      if (StageShader(tech->GetPassByIndex(pi), &fx::EffectPass::GetComputeShaderDesc)) anyCompute = true;
       else anyGraphics = true;
     }
     std::vector<TargetResources> targets(o.targets.size());
@@ -742,8 +783,8 @@ int Run(const Options& o) {
                    "CreateUnorderedAccessView"))
           return 3;
         if (!(desc.BindFlags & rhi::BIND_RENDER_TARGET)) ctx->ClearUnorderedAccessViewFloat(targets[i].uav.Get(), t.clear);
-        fx::EffectVariable* var = effect->GetVariableByName(rwTextures[i]->name.c_str());
-        if (!var || !Check(var->AsUnorderedAccessView()->SetUnorderedAccessView(targets[i].uav.Get()),
+        fx::EffectVariable* var = rwTextures[i];
+        if (!Check(var->AsUnorderedAccessView()->SetUnorderedAccessView(targets[i].uav.Get()),
                            "SetUnorderedAccessView"))
           return 1;
       }
@@ -758,15 +799,16 @@ int Run(const Options& o) {
     };
     std::vector<UavBuffer> uavBuffers;
     for (const auto& [name, n] : o.buffers) {
-      const fx::ResourceVariable* r = fx::FindByName(ast.resources, name);
-      if (!r || r->kind != fx::ResourceKind::RWStructuredBuffer) {
+      const std::string typeName = TypeNameOf(effect->GetVariableByName(name.c_str()));
+      const std::string element = TemplateArgument(typeName);
+      if (typeName.rfind("RWStructuredBuffer<", 0) != 0) {
         std::fprintf(stderr, "fxtool: error: --buffer %s: no RWStructuredBuffer of that name\n", name.c_str());
         return 1;
       }
       UavBuffer b;
       b.name = name;
       b.elements = n;
-      std::string t = r->templateArgs;
+      std::string t = element;
       t.erase(std::remove(t.begin(), t.end(), ' '), t.end());
       std::string base = t;
       if (!t.empty() && t.back() >= '1' && t.back() <= '4') {
@@ -778,7 +820,7 @@ int Run(const Options& o) {
       else if (base == "int") b.kind = 'i';
       else {
         std::fprintf(stderr, "fxtool: error: --buffer %s: element type '%s' is not a 32-bit scalar or vector\n",
-                     name.c_str(), r->templateArgs.c_str());
+                     name.c_str(), element.c_str());
         return 1;
       }
       rhi::BUFFER_DESC bd{};
@@ -837,10 +879,17 @@ int Run(const Options& o) {
       fx::EffectPass* pass = tech->GetPassByIndex(pi);
       fx::PASS_DESC pd;
       pass->GetDesc(&pd);
-      const fx::Pass* ap = FindAstPass(ast, o.technique, pi);
-      const fx::CompiledShader* cs = ap ? StageShader(ast, *ap, fx::ShaderStage::Compute) : nullptr;
-      const fx::CompiledShader* gs = ap ? StageShader(ast, *ap, fx::ShaderStage::Geometry) : nullptr;
-      const fx::CompiledShader* hs = ap ? StageShader(ast, *ap, fx::ShaderStage::Hull) : nullptr;
+      auto cs = StageShader(pass, &fx::EffectPass::GetComputeShaderDesc);
+      auto gs = StageShader(pass, &fx::EffectPass::GetGeometryShaderDesc);
+      auto hs = StageShader(pass, &fx::EffectPass::GetHullShaderDesc);
+      // The stream-output layout, read back below, from the declaration strings as FX11 reports them.
+      std::optional<fx::StreamOutputDecl> streamOutput;
+      if (gs && std::any_of(std::begin(gs->SODecls), std::end(gs->SODecls), [](rhi::LPCSTR d) { return d; })) {
+        std::vector<std::string> decls;
+        for (rhi::LPCSTR d : gs->SODecls) decls.emplace_back(d ? d : "");
+        auto parsed = fx::StreamOutputDecl::Parse(decls);
+        if (auto* decl = std::get_if<fx::StreamOutputDecl>(&parsed)) streamOutput = std::move(*decl);
+      }
       if (cs) {
         if (!Check(pass->Apply(0, ctx.Get()), "EffectPass::Apply")) return 1;
         ctx->Dispatch(o.groups[0], o.groups[1], o.groups[2]);
@@ -893,7 +942,7 @@ int Run(const Options& o) {
 
       ComPtr<rhi::Buffer> soBuffer;
       ComPtr<rhi::Query> soQuery;
-      if (gs && gs->hasStreamOutput) {
+      if (streamOutput) {
         rhi::BUFFER_DESC bd{};
         bd.ByteWidth = std::max(16u, o.soBytes);
         bd.Usage = rhi::USAGE_DEFAULT;
@@ -922,8 +971,8 @@ int Run(const Options& o) {
         ctx->CopyResource(staging.Get(), soBuffer.Get());
         rhi::MAPPED_SUBRESOURCE m{};
         if (!Check(ctx->Map(staging.Get(), 0, rhi::MAP_READ, 0, &m), "Map(stream output)")) return 3;
-        const unsigned stride = gs->streamOutput.Strides()[0];
-        const auto& entries = gs->streamOutput.Entries();
+        const unsigned stride = streamOutput->Strides()[0];
+        const auto& entries = streamOutput->Entries();
         uint64_t vertsPerPrim = topology == rhi::PRIMITIVE_TOPOLOGY_POINTLIST ? 1 : 0;  // GS output kind decides; report raw
         (void)vertsPerPrim;
         const uint64_t capacity = stride ? sd.ByteWidth / stride : 0;

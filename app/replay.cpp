@@ -18,7 +18,12 @@
 //       teapot scene): fig3_<scene>_depth_peeling_layers_0-3.png (Fig. 3: layers 0-3, each
 //       alone over neutral grey) and fig6_<scene>_depth_peeling_1_2_4_8_exact.png (Fig. 6:
 //       1, 2, 4 and 8 layers and the exact composite, every layer peeled), every
-//       method's RMSE / PSNR against the sorted reference, and Fig. 6's against the exact one
+//       method's RMSE / PSNR against the sorted reference, and Fig. 6's against the exact one;
+//       document 003's figures (WriteMomentFigures): exact | Moment Transparency | with the
+//       minimum-depth correction on its three scenes, the m sweep on its cubes, R32 | R16
+//       nearest depth, RMSE / PSNR against the exact result, the extra target's memory (its
+//       scenes are measured there only, against the exact result instead of sorted).
+//       --document 003: that document's figures alone.
 //   replay --bench [--scene demo|paper|heavy|complexity] [--frames N] [--warmup N] [--size WxH]
 //                  [--fragment-sizing exact|late]
 //       per registered method: FPS and frame ms from the GPU (TIMESTAMP queries inside a
@@ -39,6 +44,8 @@
 //       DIR/compare_grid.png and DIR/pareto_<scene>.png (app/compare_report.h).
 //       --peel-layers: the most layers the peeling methods get (default 64; a scene
 //       with fewer gets its own count).
+//   --min-depth-slope M (--demo): document 003's m for moment-transparency-mindepth (default 100,
+//       per scene unit of view depth).
 //   --fragment-sizing (--demo, --bench): how prefix-sum sizes its fragment buffer: exact
 //       (default: each frame's own total, the CPU waits for it) or late (earlier frames'
 //       totals, no wait; a frame that outgrows the buffer loses fragments, reported).
@@ -85,6 +92,8 @@ struct Options {
   bool peelLayersGiven = false;
   int layer = -1;  // --layer: the layer shown alone
   renderer::oit::FragmentStorage fragmentStorage;  // --fragment-sizing
+  std::string document;  // --figures --document 003: that document's figures alone
+  float minDepthSlope = renderer::oit::kDefaultMinDepthSlope;  // --min-depth-slope: document 003's m
 };
 
 std::unique_ptr<renderer::Translucency> Make(rhi::Device* device, rhi::DeviceContext* ctx,
@@ -140,6 +149,7 @@ int RunOne(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
   s.peelLayers = o.peelLayers;
   s.showLayer = o.layer;
   s.fragmentStorage = o.fragmentStorage;
+  s.minDepthSlope = o.minDepthSlope;
   const int frames = Frames(o, o.demo);
   auto t = Make(device, ctx, s);
   std::filesystem::create_directories(o.out);
@@ -157,13 +167,13 @@ int RunOne(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
 
 int ListMethods() {
   for (const MethodInfo* m : renderer::oit::Methods())
-    std::printf("%-18s needs: %-44s %s\n", m->name, renderer::oit::DescribeNeeds(m->needs).c_str(), m->summary);
+    std::printf("%-33s needs: %-44s %s\n", m->name, renderer::oit::DescribeNeeds(m->needs).c_str(), m->summary);
   return 0;
 }
 
 int ListScenes() {
   for (const renderer::SceneInfo* s : renderer::Scenes())
-    std::printf("%-10s %4d frames  %s\n", s->name, s->defaultFrames, s->summary);
+    std::printf("%-12s %4d frames  %s\n", s->name, s->defaultFrames, s->summary);
   return 0;
 }
 
@@ -213,8 +223,82 @@ void WritePeelingFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Opt
   WritePng((out / ("fig6_" + scene + "_depth_peeling_1_2_4_8_exact.png")).string(), fig6, w, o.height);
 }
 
+// Document 003's scenes: still, measured against the exact result (WriteMomentFigures),
+// not against `sorted`, which orders whole triangles (a floor quad under a decal).
+constexpr const char* kDocument003Scenes[] = {"cubes", "ice-in-cup", "magic-circle"};
+
+bool IsDocument003Scene(const std::string& scene) {
+  return std::find(std::begin(kDocument003Scenes), std::end(kDocument003Scenes), scene) != std::end(kDocument003Scenes);
+}
+
+// Document 003's figures, each scene against the exact result (prefix-sum, document 004):
+//   doc003_<scene>_exact_mt_mindepth.png   exact | Moment Transparency | with the correction
+//   doc003_cubes_m_1_5_25_50_75_100_150_200.png   the m sweep of the thesis's Figs. 4.7-4.22
+//   doc003_<scene>_mindepth_r32_r16.png     the nearest depth in R32_FLOAT | in R16_FLOAT
+// with every moment method's RMSE / PSNR against the exact image, the sweep's too, and
+// the memory of the correction's extra target at 1920x1080 and 3840x2160.
+void WriteMomentFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
+  const std::filesystem::path out(o.out);
+  const char* kMethods[] = {"wboit", "mboit", "moment-transparency", "moment-transparency-mindepth",
+                            "moment-transparency-mindepth-r16"};
+  std::printf("\ndocument 003 against the exact result (prefix-sum), %ux%u\n", o.width, o.height);
+  std::printf("%-13s %-33s %10s %10s\n", "scene", "method", "RMSE", "PSNR dB");
+  uint32_t w = 0;
+  for (const char* scene : kDocument003Scenes) {
+    renderer::TranslucencySettings s;
+    s.scene = scene;
+    s.width = o.width, s.height = o.height;
+    const int frames = renderer::FindScene(scene)->defaultFrames;  // still scenes: --frames is the others'
+    const std::vector<uint8_t> exact = Replay(device, ctx, s, Method("prefix-sum"), frames);
+    std::map<std::string, std::vector<uint8_t>> images;
+    for (const char* name : kMethods) {
+      images[name] = Replay(device, ctx, s, Method(name), frames);
+      const double rmse = renderer::Rmse(images[name], exact);
+      std::printf("%-13s %-33s %10.3f %10.2f\n", scene, name, rmse, renderer::Psnr(rmse));
+    }
+    auto fig = SideBySide({exact, images["moment-transparency"], images["moment-transparency-mindepth"]}, o.width,
+                          o.height, &w);
+    WritePng((out / ("doc003_" + std::string(scene) + "_exact_mt_mindepth.png")).string(), fig, w, o.height);
+    fig = SideBySide({images["moment-transparency-mindepth"], images["moment-transparency-mindepth-r16"]}, o.width,
+                     o.height, &w);
+    WritePng((out / ("doc003_" + std::string(scene) + "_mindepth_r32_r16.png")).string(), fig, w, o.height);
+    // The m sweep (document 003's Figs. 4.7-4.22 on its cubes), measured on every scene.
+    std::vector<std::vector<uint8_t>> sweep;
+    std::printf("%-13s m sweep, RMSE to exact:", scene);
+    for (float m : {1.0f, 5.0f, 25.0f, 50.0f, 75.0f, 100.0f, 150.0f, 200.0f}) {
+      s.minDepthSlope = m;
+      sweep.push_back(Replay(device, ctx, s, Method("moment-transparency-mindepth"), frames));
+      std::printf(" m=%g %.3f", m, renderer::Rmse(sweep.back(), exact));
+    }
+    std::printf("\n");
+    if (std::string(scene) == "cubes") {
+      fig = SideBySide(sweep, o.width, o.height, &w);
+      WritePng((out / "doc003_cubes_m_1_5_25_50_75_100_150_200.png").string(), fig, w, o.height);
+    }
+  }
+  // The extra target: the correction's method less plain Moment Transparency, as the
+  // methods report their memory (document 003: 7.91 MiB and 31.6 MiB in 32 bits).
+  for (const auto& [width, height] : {std::pair{1920u, 1080u}, std::pair{3840u, 2160u}}) {
+    renderer::oit::MethodSetup setup;
+    setup.device = device;
+    setup.frame = {width, height, 1};
+    setup.objectCount = 1;
+    std::string error;
+    const auto bytes = [&](const char* name) {
+      auto method = Method(name).create(Method(name), setup, &error);
+      if (!method) Fail(error);
+      return method->MemoryBytes();
+    };
+    const uint64_t plain = bytes("moment-transparency");
+    std::printf("%ux%u: Moment Transparency %.2f MiB; the min-depth target R32_FLOAT %.2f MiB, R16_FLOAT %.2f MiB\n",
+                width, height, plain / 1048576.0, (bytes("moment-transparency-mindepth") - plain) / 1048576.0,
+                (bytes("moment-transparency-mindepth-r16") - plain) / 1048576.0);
+  }
+}
+
 int RunFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
   std::filesystem::create_directories(o.out);
+  if (o.document == "003") return WriteMomentFigures(device, ctx, o), 0;
   std::printf("%-10s %-18s %10s %10s\n", "demo", "method", "RMSE", "PSNR dB");
   // Every scene with every method, measured against the sorted reference; the
   // figures are the source document's, each of named methods.
@@ -229,6 +313,7 @@ int RunFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
                             {"shards", "fig_shards_wboit_colored_sorted.png", {"wboit", "colored", "sorted"}},
                             {"teapot", "fig3_teapot_alpha_sorted_wboit.png", {"alpha", "sorted", "wboit"}}};
   for (const renderer::SceneInfo* scene : renderer::Scenes()) {
+    if (IsDocument003Scene(scene->name)) continue;  // WriteMomentFigures measures them against the exact result
     renderer::TranslucencySettings s;
     s.scene = scene->name;
     s.width = o.width, s.height = o.height;
@@ -249,6 +334,7 @@ int RunFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
     }
   }
   WritePeelingFigures(device, ctx, o);
+  WriteMomentFigures(device, ctx, o);
   return 0;
 }
 
@@ -488,6 +574,9 @@ int main(int argc, char** argv) {
       o.figures = true;
     } else if (a == "--compare") {
       o.compare = true;
+    } else if (a == "--document") {
+      o.document = next();
+      if (o.document != "003") Fail("--document takes 003 (the figures of one document alone)");
     } else if (a == "--bench") {
       o.bench = true;
     } else if (a == "--scene") {
@@ -503,15 +592,18 @@ int main(int argc, char** argv) {
       const std::string v = next();
       if (v != "exact" && v != "late") Fail("--fragment-sizing takes exact or late");
       o.fragmentStorage.exactSizing = v == "exact";
+    } else if (a == "--min-depth-slope") {
+      o.minDepthSlope = float(std::atof(next().c_str()));
+      if (!(o.minDepthSlope > 0)) Fail("--min-depth-slope takes a positive m (per scene unit of view depth)");
     } else if (a == "--layer") {
       o.layer = std::atoi(next().c_str());
       if (o.layer < 0) Fail("--layer takes a layer number, 0 the nearest");
     } else {
       Fail("unknown argument " + a +
            "\nusage: replay --demo SCENE --method METHOD [--frames N] [--size WxH] [--peel-layers N] [--layer K]"
-           " [--fragment-sizing exact|late] --out DIR"
+           " [--fragment-sizing exact|late] [--min-depth-slope M] --out DIR"
            "\n       replay --list-methods | --list-scenes"
-           "\n       replay --figures --out DIR\n       replay --compare [--size WxH] [--out DIR] [--frames N] [--peel-layers N]\n       replay --bench [--scene demo|paper|heavy|complexity] [--frames N] [--warmup N]"
+           "\n       replay --figures [--document 003] --out DIR\n       replay --compare [--size WxH] [--out DIR] [--frames N] [--peel-layers N]\n       replay --bench [--scene demo|paper|heavy|complexity] [--frames N] [--warmup N]"
            "\n  scenes: " + renderer::SceneNames() + "\n  methods: " + renderer::oit::MethodNames());
     }
   }

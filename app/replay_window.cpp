@@ -167,12 +167,15 @@ struct Orbit {
     pitch = std::atan2(height, radius);
     distance = std::sqrt(radius * radius + height * height);
   }
-  renderer::Camera ToCamera(uint32_t width, uint32_t height) const {
+  // The scripted camera's planes (`scripted`, Translucency::CameraForFrame) are kept.
+  renderer::Camera ToCamera(uint32_t width, uint32_t height, const renderer::Camera& scripted) const {
     renderer::Camera c;
+    c.nearPlane = scripted.nearPlane, c.farPlane = scripted.farPlane;
     c.eye = target + distance * glm::vec3(std::cos(pitch) * std::sin(yaw), std::sin(pitch),
                                           -std::cos(pitch) * std::cos(yaw));
     const glm::mat4 view = glm::lookAtLH(c.eye, target, glm::vec3(0, 1, 0));
-    const glm::mat4 proj = glm::perspectiveLH_ZO(glm::radians(50.0f), float(width) / float(height), 0.1f, 40.0f);
+    const glm::mat4 proj =
+        glm::perspectiveLH_ZO(glm::radians(50.0f), float(width) / float(height), c.nearPlane, c.farPlane);
     c.viewProj = proj * view;
     return c;
   }
@@ -568,8 +571,9 @@ int ReplayWindow::Run() {
     // The scene: the next frame of the demo, unless paused.
     UpdateOrbitFromMouse();
     if (!paused_) {
-      scene_->SetCameraOverride(orbiting_ ? std::optional<renderer::Camera>(orbit_.ToCamera(settings_.width,
-                                                                                             settings_.height))
+      scene_->SetCameraOverride(orbiting_ ? std::optional<renderer::Camera>(orbit_.ToCamera(
+                                                      settings_.width, settings_.height,
+                                                      scene_->CameraForFrame(scene_->frame())))
                                           : std::nullopt);
       if (!scene_->RenderFrame(*method_)) {
         std::fprintf(stderr, "replay: %s\n", scene_->error().c_str());

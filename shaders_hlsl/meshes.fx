@@ -100,11 +100,8 @@ void ShadeTriangle(uint id, float4 position, out float3 c, out float a, out floa
   uint3 index = MeshIndices.Load3(id * 12);
   float3 p0 = asfloat(MeshVertices.Load3(index.x * 64)), p1 = asfloat(MeshVertices.Load3(index.y * 64)),
          p2 = asfloat(MeshVertices.Load3(index.z * 64));
-  float3 world = UnprojectPixel(position);
-  float3 n = cross(p1 - p0, p2 - p0);
-  float w0 = dot(cross(p2 - p1, world - p1), n) / dot(n, n);
-  float w1 = dot(cross(p0 - p2, world - p2), n) / dot(n, n);
-  float w2 = 1.0 - w0 - w1;
+  const float3 w = Barycentrics(p0, p1, p2, UnprojectPixel(position));
+  const float w0 = w.x, w1 = w.y, w2 = w.z;
   MeshVertexOut v0 = LoadMeshVertex(index.x), v1 = LoadMeshVertex(index.y), v2 = LoadMeshVertex(index.z);
   MeshPixel p;
   p.position = position;
@@ -113,7 +110,7 @@ void ShadeTriangle(uint id, float4 position, out float3 c, out float a, out floa
   p.back = w0 * v0.back + w1 * v1.back + w2 * v2.back;
   p.opacity = w0 * v0.opacity + w1 * v1.opacity + w2 * v2.opacity;
   p.transmission = w0 * v0.transmission + w1 * v1.transmission + w2 * v2.transmission;
-  p.isFrontFace = dot(n, Eye - p0) > 0;
+  p.isFrontFace = dot(cross(p1 - p0, p2 - p0), Eye - p0) > 0;
   Shade(p, c, a, t);
 }
 

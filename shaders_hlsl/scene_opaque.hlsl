@@ -26,7 +26,11 @@ OpaquePixel VSOpaque(OpaqueVertex v) {
   return o;
 }
 
-float4 PSOpaque(OpaquePixel p) : SV_Target {
-  float d = saturate(dot(normalize(p.normal), normalize(LightDir)));
-  return float4(p.color * (Ambient + (1.0 - Ambient) * d), 1);
+// Lambert with an ambient floor: forward (PSOpaque) and deferred (scene.fx's
+// visibility-buffer shading) alike.
+float3 LitOpaque(float3 normal, float3 color) {
+  float d = saturate(dot(normalize(normal), normalize(LightDir)));
+  return color * (Ambient + (1.0 - Ambient) * d);
 }
+
+float4 PSOpaque(OpaquePixel p) : SV_Target { return float4(LitOpaque(p.normal, p.color), 1); }

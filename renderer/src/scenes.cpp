@@ -183,6 +183,77 @@ bool BuildComplexity(rhi::Device* device, const TranslucencySettings& s,
   return true;
 }
 
+// Document 003's scenes (the thesis's near 0.25 and far 5000). Their backdrop: a
+// light checkered ground and a two-tone wall behind, detail to see through the glass.
+constexpr float kThesisNear = 0.25f, kThesisFar = 5000.0f;
+
+std::vector<BackdropVertex> Studio(const TranslucencySettings&) {
+  std::vector<BackdropVertex> v;
+  for (int i = 0; i < 12; ++i)
+    for (int j = 0; j < 12; ++j) {
+      const glm::vec3 c = ((i + j) & 1) ? glm::vec3(0.45f) : glm::vec3(0.7f);
+      AddQuad(&v, {-6.0f + i, 0, -6.0f + j}, {1, 0, 0}, {0, 0, 1}, c);
+    }
+  AddQuad(&v, {-6, 0, 3}, {12, 0, 0}, {0, 1.5f, 0}, {0.75f, 0.55f, 0.35f});
+  AddQuad(&v, {-6, 1.5f, 3}, {12, 0, 0}, {0, 6, 0}, {0.8f, 0.8f, 0.75f});
+  return v;
+}
+
+bool AddMeshes(rhi::Device* device, const TranslucencySettings& s, const std::vector<TriangleMesh>& meshes,
+               std::vector<std::unique_ptr<TranslucentObject>>* objects, std::string* error) {
+  auto object = CreateMeshes(Setup(device, s), meshes, error);
+  if (!object) return false;
+  objects->push_back(std::move(object));
+  return true;
+}
+
+MeshMaterial Glass(const glm::vec3& colour, float opacity) { return {colour, 0.8f * colour, opacity, colour}; }
+
+// Overlapping coloured cubes; the blue one in front, the others seen through it.
+bool BuildCubes(rhi::Device* device, const TranslucencySettings& s,
+                std::vector<std::unique_ptr<TranslucentObject>>* objects, std::string* error) {
+  return AddMeshes(device, s,
+                   {Box({-0.9f, 0.05f, 0.1f}, {-0.1f, 0.85f, 0.9f}, Glass({0.95f, 0.2f, 0.15f}, 0.5f)),
+                    Box({0.15f, 0.05f, 0.3f}, {0.95f, 0.85f, 1.1f}, Glass({0.2f, 0.85f, 0.3f}, 0.5f)),
+                    Box({-0.4f, 0.7f, 0.5f}, {0.4f, 1.5f, 1.3f}, Glass({1.0f, 0.85f, 0.2f}, 0.5f)),
+                    Box({-0.35f, 0.3f, -0.5f}, {0.45f, 1.1f, 0.3f}, Glass({0.2f, 0.4f, 1.0f}, 0.5f))},
+                   objects, error);
+}
+
+// "Ice in a cup": a smoky glass tumbler (open at the top) with two ice cubes, the
+// front face of one 0.003 behind the tumbler's front wall (within 1/m = 0.01).
+bool BuildIceInCup(rhi::Device* device, const TranslucencySettings& s,
+                   std::vector<std::unique_ptr<TranslucentObject>>* objects, std::string* error) {
+  const MeshMaterial cup{{0.35f, 0.45f, 0.6f}, {0.3f, 0.38f, 0.5f}, 0.65f, {0.35f, 0.45f, 0.6f}};
+  const MeshMaterial ice{{0.85f, 0.95f, 1.0f}, {0.75f, 0.85f, 0.95f}, 0.35f, {0.85f, 0.95f, 1.0f}};
+  return AddMeshes(device, s,
+                   {Box({-0.45f, 0.02f, -0.45f}, {0.45f, 1.0f, 0.45f}, cup, true),
+                    Box({-0.32f, 0.3f, -0.447f}, {0.02f, 0.64f, -0.107f}, ice),
+                    Box({0.06f, 0.45f, -0.2f}, {0.38f, 0.77f, 0.12f}, ice)},
+                   objects, error);
+}
+
+// "A magic circle on a glass floor": a glowing decal 0.001 above a translucent
+// floor, which stands over the checkered ground.
+bool BuildMagicCircle(rhi::Device* device, const TranslucencySettings& s,
+                      std::vector<std::unique_ptr<TranslucentObject>>* objects, std::string* error) {
+  const float floor = 0.4f;
+  const MeshMaterial glass{{0.6f, 0.85f, 0.9f}, {0.5f, 0.7f, 0.75f}, 0.3f, {0.6f, 0.85f, 0.9f}};
+  const MeshMaterial decal{{1.0f, 0.75f, 0.2f}, {1.0f, 0.75f, 0.2f}, 0.8f, {1.0f, 0.75f, 0.2f}};
+  return AddMeshes(device, s,
+                   {FlatQuad({-1.5f, floor, -1.5f}, {1.5f, floor, -1.5f}, {1.5f, floor, 1.5f}, {-1.5f, floor, 1.5f},
+                             {0, 1, 0}, glass),
+                    MagicCircle({0, floor + 0.001f, 0}, 1.0f, decal)},
+                   objects, error);
+}
+
+const SceneInfo kCubes{"cubes", "document 003's overlapping translucent coloured cubes (near 0.25, far 5000)",
+                       {0.0f, 0.7f, 0.4f}, 2.6f, 1, Studio, BuildCubes, kThesisNear, kThesisFar};
+const SceneInfo kIceInCup{"ice-in-cup", "document 003's ice in a cup: translucent cubes just inside a glass",
+                          {0.0f, 0.5f, 0.0f}, 1.6f, 1, Studio, BuildIceInCup, kThesisNear, kThesisFar};
+const SceneInfo kMagicCircle{"magic-circle", "document 003's magic circle 0.001 above a translucent glass floor",
+                             {0.0f, 0.4f, 0.0f}, 1.8f, 1, Studio, BuildMagicCircle, kThesisNear, kThesisFar};
+
 const SceneInfo kTeapot{"teapot", "document 002's Fig. 3: a two-sided translucent Utah teapot over a blue ground",
                         {0.2f, 0.75f, 0.0f}, 3.2f, 1, BlueGround, BuildTeapot};
 const SceneInfo kComplexity{"complexity",
@@ -198,7 +269,8 @@ QuadStack ComplexityQuadStack(const TranslucencySettings& s) {
 }
 
 const std::vector<const SceneInfo*>& Scenes() {
-  static const std::vector<const SceneInfo*> scenes = {&kSmoke, &kFire, &kShards, &kTeapot, &kComplexity};
+  static const std::vector<const SceneInfo*> scenes = {&kSmoke,  &kFire,  &kShards,    &kTeapot,
+                                                       &kComplexity, &kCubes, &kIceInCup, &kMagicCircle};
   return scenes;
 }
 

@@ -3,6 +3,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "fx/effect.h"
+#include "objects/objects.h"
 #include "renderer/effect_files.h"
 #include "rhi/capture.h"
 #include "rhi/query_wait.h"
@@ -45,9 +46,17 @@ struct Translucency::Impl {
   ComPtr<InputLayout> opaqueLayout;
   ComPtr<Buffer> opaqueVb;
   UINT opaqueVertices = 0;
+  // Document 004's visibility buffer (technique Visibility), made when a method
+  // that shades the opaque objects deferred first renders: the triangle id a pixel
+  // shows (R32_UINT), and the raw view of the vertices that Visibility/Shade reads.
+  fx::EffectPass* visibilityIdsPass = nullptr;
+  ComPtr<Texture2D> visibility;
+  ComPtr<RenderTargetView> visibilityRtv;
+  ComPtr<ShaderResourceView> visibilitySrv, opaqueVerticesSrv;
   // The frame (R8G8B8A8_UNORM) and the opaque depth.
   ComPtr<Texture2D> frame, depth;
   ComPtr<RenderTargetView> frameRtv;
+  ComPtr<ShaderResourceView> frameSrv;
   ComPtr<DepthStencilView> dsv;
   // The scene's translucent objects and the methods made for them, by name.
   std::vector<std::unique_ptr<TranslucentObject>> objects;
@@ -57,6 +66,30 @@ struct Translucency::Impl {
   MethodState* timed = nullptr;  // the method of the last timed frame, until LastTimes reads it
 
   void Stamp(MethodState& state, size_t index) { context->End(state.stamps[index].Get()); }
+};
+
+// The opaque objects shaded from the visibility buffer, for the frame's camera.
+class Translucency::FrameOpaque final : public oit::OpaqueScene {
+ public:
+  FrameOpaque(Impl& impl, const Camera& camera, const oit::FrameDesc& frame)
+      : impl_(impl), camera_(camera), frame_(frame) {}
+  void ShadeVisibility(DeviceContext* context) override {
+    fx::Effect* effect = impl_.sceneFx.Get();
+    RenderTargetView* rtv = impl_.frameRtv.Get();
+    context->OMSetRenderTargets(1, &rtv, nullptr);
+    SetInverseViewProj(effect, camera_);
+    effect->GetVariableByName("VisibilityIds")->AsShaderResource()->SetResource(impl_.visibilitySrv.Get());
+    effect->GetVariableByName("OpaqueVertices")->AsShaderResource()->SetResource(impl_.opaqueVerticesSrv.Get());
+    if (!DrawFullscreenPass(context, effect, frame_, "Visibility", "ShadeOpaque", &error)) return;
+    ShaderResourceView* none[2] = {};
+    context->PSSetShaderResources(0, 2, none);  // the next frame renders ids into the visibility buffer
+  }
+  std::string error;
+
+ private:
+  Impl& impl_;
+  const Camera& camera_;
+  oit::FrameDesc frame_;
 };
 
 // The objects as a method's passes draw them: every object, with the method of the frame.
@@ -169,6 +202,7 @@ bool Translucency::Initialize(Device* device, DeviceContext* context, const Tran
   if (!texture(DXGI_FORMAT_R8G8B8A8_UNORM, BIND_RENDER_TARGET | BIND_SHADER_RESOURCE, &m.frame) ||
       !texture(DXGI_FORMAT_D32_FLOAT, BIND_DEPTH_STENCIL, &m.depth) ||
       FAILED(device->CreateRenderTargetView(m.frame.Get(), nullptr, m.frameRtv.GetAddressOf())) ||
+      FAILED(device->CreateShaderResourceView(m.frame.Get(), nullptr, m.frameSrv.GetAddressOf())) ||
       FAILED(device->CreateDepthStencilView(m.depth.Get(), nullptr, m.dsv.GetAddressOf())))
     return fail("creating the frame and the depth buffer");
 
@@ -189,9 +223,14 @@ bool Translucency::Initialize(Device* device, DeviceContext* context, const Tran
   m.ambient = m.sceneFx->GetVariableByName("Ambient")->AsScalar();
   std::vector<BackdropVertex> scene = scene_->backdrop(s);
   m.opaqueVertices = UINT(scene.size());
-  BUFFER_DESC vb{UINT(scene.size() * sizeof(BackdropVertex)), USAGE_IMMUTABLE, BIND_VERTEX_BUFFER, 0, 0, 0};
+  // Also a shader resource: the visibility buffer's shading reads the triangles through a raw view.
+  const UINT vbBytes = UINT(scene.size() * sizeof(BackdropVertex));
+  BUFFER_DESC vb{vbBytes, USAGE_IMMUTABLE, BIND_VERTEX_BUFFER | BIND_SHADER_RESOURCE, 0,
+                 RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS, 0};
   SUBRESOURCE_DATA init{scene.data(), 0, 0};
-  if (FAILED(device->CreateBuffer(&vb, &init, m.opaqueVb.GetAddressOf()))) return fail("the opaque vertex buffer");
+  if (FAILED(device->CreateBuffer(&vb, &init, m.opaqueVb.GetAddressOf())) ||
+      !CreateRawView(device, m.opaqueVb.Get(), vbBytes, &m.opaqueVerticesSrv))
+    return fail("the opaque vertex buffer");
 
   QUERY_DESC disjoint{QUERY_TIMESTAMP_DISJOINT, 0}, statistics{QUERY_PIPELINE_STATISTICS, 0};
   if (FAILED(device->CreateQuery(&disjoint, m.disjoint.GetAddressOf())) ||
@@ -211,9 +250,11 @@ Translucency::MethodState* Translucency::Prepare(const oit::MethodInfo& info) {
                                {settings_.width, settings_.height, 1},
                                settings_.peelLayers,
                                uint32_t(m.objects.size()),
-                               settings_.fragmentStorage};
+                               settings_.fragmentStorage,
+                               settings_.minDepthSlope};
   state.method = info.create(info, setup, &why);
   if (!state.method) return error_ = std::string(info.name) + ": " + why, nullptr;
+  if (state.method->Opaque() == oit::OpaqueShading::VisibilityBuffer && !PrepareVisibilityBuffer()) return nullptr;
   if (settings_.showLayer >= 0 && !state.method->ShowLayer(uint32_t(settings_.showLayer)))
     return error_ = std::string(info.name) + " keeps no layer " + std::to_string(settings_.showLayer), nullptr;
   for (auto& object : m.objects)
@@ -228,6 +269,19 @@ Translucency::MethodState* Translucency::Prepare(const oit::MethodInfo& info) {
   return &m.methods.emplace(info.name, std::move(state)).first->second;
 }
 
+bool Translucency::PrepareVisibilityBuffer() {
+  Impl& m = *impl_;
+  if (m.visibility) return true;
+  if (!(m.visibilityIdsPass = FindPass(m.sceneFx.Get(), "Visibility", "Ids", &error_))) return false;
+  TEXTURE2D_DESC d{settings_.width, settings_.height, 1, 1, DXGI_FORMAT_R32_UINT, {1, 0}, USAGE_DEFAULT,
+                   BIND_RENDER_TARGET | BIND_SHADER_RESOURCE, 0, 0};
+  if (FAILED(m.device->CreateTexture2D(&d, nullptr, m.visibility.GetAddressOf())) ||
+      FAILED(m.device->CreateRenderTargetView(m.visibility.Get(), nullptr, m.visibilityRtv.GetAddressOf())) ||
+      FAILED(m.device->CreateShaderResourceView(m.visibility.Get(), nullptr, m.visibilitySrv.GetAddressOf())))
+    return error_ = "creating the visibility buffer failed", false;
+  return true;
+}
+
 const oit::Method* Translucency::MethodInstance(const oit::MethodInfo& method) const {
   auto found = impl_->methods.find(method.name);
   return found == impl_->methods.end() ? nullptr : found->second.method.get();
@@ -236,9 +290,11 @@ const oit::Method* Translucency::MethodInstance(const oit::MethodInfo& method) c
 Camera Translucency::CameraForFrame(uint32_t n) const {
   Camera c;
   c.eye = ScriptedEye(scene_->cameraTarget, scene_->cameraRadius, n);
+  c.nearPlane = settings_.nearPlane > 0 ? settings_.nearPlane : scene_->nearPlane;
+  c.farPlane = settings_.farPlane > 0 ? settings_.farPlane : scene_->farPlane;
   glm::mat4 view = glm::lookAtLH(c.eye, scene_->cameraTarget, glm::vec3(0, 1, 0));
-  glm::mat4 proj =
-      glm::perspectiveLH_ZO(glm::radians(50.0f), float(settings_.width) / float(settings_.height), 0.1f, 40.0f);
+  glm::mat4 proj = glm::perspectiveLH_ZO(glm::radians(50.0f), float(settings_.width) / float(settings_.height),
+                                         c.nearPlane, c.farPlane);
   c.viewProj = proj * view;
   return c;
 }
@@ -270,7 +326,8 @@ bool Translucency::Render(const oit::MethodInfo& method, bool advance) {
     ctx->Begin(m.disjoint.Get());
     m.Stamp(*state, 0);
   }
-  OpaquePass();
+  const bool visibility = state->method->Opaque() == oit::OpaqueShading::VisibilityBuffer;
+  OpaquePass(visibility);
   if (timed) m.Stamp(*state, 1);
   if (advance) {
     for (auto& object : m.objects) object->Update(ctx, count);
@@ -279,25 +336,35 @@ bool Translucency::Render(const oit::MethodInfo& method, bool advance) {
   if (timed) m.Stamp(*state, 2);
   FrameGeometry geometry(m, method, camera_, {settings_.width, settings_.height, 1});
   FrameMarks marks(ctx, timed ? &state->stamps : nullptr, m.firstPassStatistics.Get());
-  state->method->Render({ctx, {m.frameRtv.Get(), m.dsv.Get()}, &geometry, &marks});
+  FrameOpaque opaque(m, camera_, {settings_.width, settings_.height, 1});
+  state->method->Render(
+      {ctx, {m.frameRtv.Get(), m.dsv.Get(), m.frameSrv.Get()}, &geometry, &marks, visibility ? &opaque : nullptr,
+       camera_.nearPlane, camera_.farPlane});
   marks.Finish();
   if (timed) {
     ctx->End(m.disjoint.Get());
     m.timed = state;
   }
   if (!geometry.error.empty()) return error_ = geometry.error, false;
+  if (!opaque.error.empty()) return error_ = opaque.error, false;
   if (advance) ++frame_;
   return true;
 }
 
-// Opaque objects: scene.fx Opaque/Scene into the frame and the depth buffer.
-void Translucency::OpaquePass() {
+// Opaque objects into the depth buffer and, forward (scene.fx Opaque/Scene), the
+// frame, or their triangle ids into the visibility buffer (Visibility/Ids: the frame
+// keeps the background until the method shades them).
+void Translucency::OpaquePass(bool visibilityBuffer) {
   Impl& m = *impl_;
   DeviceContext* ctx = m.context;
-  const float sky[4] = {0.55f, 0.65f, 0.8f, 1.0f}, grey[4] = {0.6f, 0.6f, 0.6f, 1.0f};
-  ctx->ClearRenderTargetView(m.frameRtv.Get(), settings_.neutralBackground ? grey : sky);
+  ctx->ClearRenderTargetView(m.frameRtv.Get(), settings_.neutralBackground ? kNeutralColour : kSkyColour);
   ctx->ClearDepthStencilView(m.dsv.Get(), CLEAR_DEPTH, 1.0f, 0);
   RenderTargetView* rtv = m.frameRtv.Get();
+  if (visibilityBuffer) {
+    const float background[4] = {0, 0, 0, 0};  // id 0: no triangle (D3D11 converts the floats to UINT)
+    ctx->ClearRenderTargetView(m.visibilityRtv.Get(), background);
+    rtv = m.visibilityRtv.Get();
+  }
   ctx->OMSetRenderTargets(1, &rtv, m.dsv.Get());
   VIEWPORT viewport{0, 0, float(settings_.width), float(settings_.height), 0, 1};
   ctx->RSSetViewports(1, &viewport);
@@ -309,7 +376,7 @@ void Translucency::OpaquePass() {
   ctx->IASetInputLayout(m.opaqueLayout.Get());
   ctx->IASetVertexBuffers(0, 1, &vb, &stride, &offset);
   ctx->IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLELIST);
-  m.opaquePass->Apply(0, ctx);
+  (visibilityBuffer ? m.visibilityIdsPass : m.opaquePass)->Apply(0, ctx);
   ctx->Draw(m.opaqueVertices, 0);
 }
 

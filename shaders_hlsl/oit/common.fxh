@@ -46,10 +46,16 @@ RasterizerState NoCull { CullMode = NONE; };
 #define OBJECT_COLORED_TRANSMISSION 0
 #endif
 
+// The colour a surface adds in the exact methods (depth peeling, dual depth peeling,
+// the fragment buffers): c saturated, as D3D11 clamps OVER's source to the
+// R8G8B8A8_UNORM frame's range on its way into the blender in `sorted`, so that
+// highlights brighter than 1 (the shards' specular) weigh alike in every exact method.
+float3 SurfaceColour(float3 c) { return saturate(c); }
+
 // What a surface lets through of the light behind it, per channel: 1 - a for
 // plain translucency (OVER), 1 - a (1 - t) for coloured transmission, the
 // per-surface model colored blended OIT (Table 3) approximates. Exact methods
-// composite front to back with it: C += T * a * c; T *= TransmissionFactor(a, t).
+// composite front to back with it: C += T * a * SurfaceColour(c); T *= TransmissionFactor(a, t).
 float3 TransmissionFactor(float a, float3 t) {
 #if OBJECT_COLORED_TRANSMISSION
   return 1.0 - a * (1.0 - t);

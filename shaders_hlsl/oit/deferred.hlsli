@@ -20,4 +20,22 @@ float3 UnprojectPixel(float4 position) {
   return world.xyz / world.w;
 }
 
+// The world-space barycentric weights of `world`, a point on the triangle's plane,
+// for vertices p0, p1, p2: what perspective-correct interpolation of the triangle's
+// attributes gives at the pixel that shows `world`.
+float3 Barycentrics(float3 p0, float3 p1, float3 p2, float3 world) {
+  float3 n = cross(p1 - p0, p2 - p0);
+  float w0 = dot(cross(p2 - p1, world - p1), n) / dot(n, n);
+  float w1 = dot(cross(p0 - p2, world - p2), n) / dot(n, n);
+  return float3(w0, w1, 1.0 - w0 - w1);
+}
+
+// Where the ray through the pixel centre `pixel` meets the plane of the triangle
+// p0, p1, p2: the point a visibility buffer's pixel shows, without its depth.
+float3 PixelOnTriangle(float2 pixel, float3 p0, float3 p1, float3 p2) {
+  float3 nearPoint = UnprojectPixel(float4(pixel, 0, 1)), farPoint = UnprojectPixel(float4(pixel, 1, 1));
+  float3 ray = farPoint - nearPoint, n = cross(p1 - p0, p2 - p0);
+  return nearPoint + ray * (dot(p0 - nearPoint, n) / dot(ray, n));
+}
+
 #endif

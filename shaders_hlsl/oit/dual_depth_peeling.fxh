@@ -9,7 +9,10 @@
 //                 the pass reads the other pair): colour sum T a c, and 1 - T;
 //               RT3, RT4 the back layer peeled now (R16G16B16A16_FLOAT, cleared 0):
 //                 (a c, a) and 1 - TransmissionFactor(a, t).
-//   pass BlendBack (after each Peel) and BlendFront (last): RT0 the frame.
+//   pass LoadFrame (first): RT0 the composite (R32G32B32A32_FLOAT) = the opaque frame
+//       (float_composite.hlsli says why).
+//   pass BlendBack (after each Peel) and BlendFront (last): RT0 the composite.
+//   pass StoreFrame: RT0 the frame = the composite, rounded once.
 // The opaque depth is bound read-only-in-effect (DepthTestNoWrite): fragments
 // behind the opaque geometry take part in no pass, so it bounds every layer.
 //
@@ -21,6 +24,8 @@
 // blending, frame = a c + T * frame, T per channel in SV_Target1: plain D3D11
 // blending (SRC_ALPHA / INV_SRC_ALPHA, B&M's) has one transmission for all channels.
 #include "common.fxh"
+#include "../fullscreen.hlsli"
+#include "float_composite.hlsli"
 
 Texture2D<float2> DepthRange;    // (-nearest, farthest) of what the last pass left to peel
 Texture2D<float4> FrontColour;   // the front so far: sum of T a c over its layers
@@ -97,7 +102,7 @@ PeelOut PSPeel(OBJECT_PIXEL p) {
     return o;
   }
   // Saturated as depth peeling does (OVER's source clamped by the UNORM frame).
-  float3 premultiplied = a * saturate(c), transmission = TransmissionFactor(a, t);
+  float3 premultiplied = a * SurfaceColour(c), transmission = TransmissionFactor(a, t);
   if (z == nearest) {  // under the front: C += T a c, T *= TransmissionFactor
     float3 frontT = 1.0 - o.frontOpacity.rgb;
     o.frontColour.rgb += frontT * premultiplied;
@@ -109,11 +114,6 @@ PeelOut PSPeel(OBJECT_PIXEL p) {
   return o;
 }
 #endif
-
-float4 VSDualFullscreen(uint id : SV_VertexID) : SV_Position {
-  float2 uv = float2((id << 1) & 2, id & 2);
-  return float4(uv * float2(2, -2) + float2(-1, 1), 0, 1);
-}
 
 struct OverFrameOut {
   float4 colour : SV_Target0;
@@ -143,12 +143,12 @@ OverFrameOut PSBlendFront(float4 pos : SV_Position) { return OverTheFrame(FrontC
     SetRasterizerState(NoCull);                              \
   }
 
-#define DUAL_FULLSCREEN_PASS(name, ps)                            \
+#define DUAL_FULLSCREEN_PASS(name, ps, blend)                     \
   pass name {                                                     \
-    SetVertexShader(CompileShader(vs_5_0, VSDualFullscreen()));   \
+    SetVertexShader(CompileShader(vs_5_0, VSFullscreenTriangle()));   \
     SetGeometryShader(NULL);                                      \
     SetPixelShader(CompileShader(ps_5_0, ps()));                  \
-    SetBlendState(OverFrame, float4(0, 0, 0, 0), 0xFFFFFFFF);     \
+    SetBlendState(blend, float4(0, 0, 0, 0), 0xFFFFFFFF);         \
     SetDepthStencilState(NoDepth, 0);                             \
     SetRasterizerState(NoCull);                                   \
   }
@@ -160,6 +160,8 @@ technique11 DualDepthPeeling {
   DUAL_OBJECT_PASS(Init, PSInit)
   DUAL_OBJECT_PASS(Peel, PSPeel)
 #endif
-  DUAL_FULLSCREEN_PASS(BlendBack, PSBlendBack)
-  DUAL_FULLSCREEN_PASS(BlendFront, PSBlendFront)
+  DUAL_FULLSCREEN_PASS(LoadFrame, PSCopy, NULL)
+  DUAL_FULLSCREEN_PASS(BlendBack, PSBlendBack, OverFrame)
+  DUAL_FULLSCREEN_PASS(BlendFront, PSBlendFront, OverFrame)
+  DUAL_FULLSCREEN_PASS(StoreFrame, PSCopy, NULL)
 }

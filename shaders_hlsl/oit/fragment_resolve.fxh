@@ -3,7 +3,7 @@
 // pixel, gathers the pixel's stored (triangle id, depth) fragments, sorts them
 // front to back (ties by triangle id: deterministic), shades each from its id
 // (the object's ShadeTriangle: deferred) and composites with the object's
-// per-surface model, C += T * a * c; T *= TransmissionFactor(a, t), from C = 0,
+// per-surface model, C += T * a * SurfaceColour(c); T *= TransmissionFactor(a, t), from C = 0,
 // T = 1. The output merger puts it over the opaque frame with dual-source
 // blending: frame = C * ONE + frame * SRC1_COLOR (T).
 //
@@ -15,6 +15,7 @@
 //   FragmentCursor NextFragment(FragmentCursor at);
 #ifndef OIT_FRAGMENT_RESOLVE_FXH
 #define OIT_FRAGMENT_RESOLVE_FXH
+#include "../fullscreen.hlsli"
 
 // Front to back onto the frame: frame = C + frame * T (T per channel: SV_Target1).
 BlendState CompositeOverOpaque {
@@ -44,13 +45,8 @@ void CompositeFragment(Fragment f, float2 pixelCentre, inout float3 C, inout flo
   float3 c, t;
   float a;
   ShadeTriangle(f.id, float4(pixelCentre, f.depth, 1), c, a, t);
-  C += T * a * c;
+  C += T * a * SurfaceColour(c);
   T *= TransmissionFactor(a, t);
-}
-
-float4 VSResolve(uint id : SV_VertexID) : SV_Position {
-  float2 uv = float2((id << 1) & 2, id & 2);
-  return float4(uv * float2(2, -2) + float2(-1, 1), 0, 1);
 }
 
 struct ResolveOut {
@@ -92,7 +88,7 @@ ResolveOut PSResolve(float4 position : SV_Position) {
 
 #define FRAGMENT_RESOLVE_PASS                                  \
   pass Resolve {                                              \
-    SetVertexShader(CompileShader(vs_5_0, VSResolve()));      \
+    SetVertexShader(CompileShader(vs_5_0, VSFullscreenTriangle()));      \
     SetGeometryShader(NULL);                                  \
     SetPixelShader(CompileShader(ps_5_0, PSResolve()));       \
     SetBlendState(CompositeOverOpaque, float4(0, 0, 0, 0), 0xFFFFFFFF); \

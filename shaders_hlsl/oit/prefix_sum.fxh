@@ -1,5 +1,6 @@
-// Exact OIT with a prefix-sum fragment buffer (document 004, SPEC.md; the opaque
-// part is the frame driver's forward-shaded opaque pass). Passes, in order:
+// Exact OIT with a prefix-sum fragment buffer (document 004, SPEC.md). Before
+// these passes the frame driver has drawn the opaque objects into a visibility
+// buffer and the depth (steps 0-1, scene.fx technique Visibility). Passes, in order:
 //   Count           (object) steps 2: per pixel, InterlockedAdd into Counts of the
 //                   fragments that pass the opaque depth test ([earlydepthstencil]).
 //   ScanBlocks, AddBlockOffsets (compute, method.fx) step 3: the exclusive prefix sum
@@ -9,6 +10,11 @@
 //   Fill            (object) step 4: each fragment's (triangle id, depth) at
 //                   Offsets[pixel] + InterlockedAdd(Cursors[pixel], 1); the cursors
 //                   end equal to the counts.
+//   ShadeOpaque     (scene.fx Visibility/ShadeOpaque, full screen) step 6's opaque part: each
+//                   pixel's opaque triangle shaded from the visibility buffer into the
+//                   frame (the background where there is none), before the resolve
+//                   blends the translucent composite over it: frame = C + T * opaque,
+//                   as step 6's "shade the opaque pixel under it".
 //   Resolve         (object, full screen) step 5: fragment_resolve.fxh.
 // Per-pixel buffers are raw R32 words at (y * FrameWidth + x) * 4; the fill stores
 // only the slots below the fragment buffer's size (renderer/src/oit/prefix_sum.cpp

@@ -4,14 +4,10 @@
 // the method's composing blend state (Table 2 or 4).
 #ifndef OIT_WEIGHTED_COMPOSE_FXH
 #define OIT_WEIGHTED_COMPOSE_FXH
+#include "../fullscreen.hlsli"
 
 Texture2D<float4> Accum;      // R16G16B16A16_FLOAT: the sum of (c*a, a)*w
 Texture2D<float4> Revealage;  // R8_UNORM: the product of (1 - a)
-
-float4 VSFullscreen(uint id : SV_VertexID) : SV_Position {
-  float2 uv = float2((id << 1) & 2, id & 2);
-  return float4(uv * float2(2, -2) + float2(-1, 1), 0, 1);
-}
 
 float4 PSCompose(float4 pos : SV_Position) : SV_Target {
   int3 p = int3(pos.xy, 0);
@@ -22,7 +18,7 @@ float4 PSCompose(float4 pos : SV_Position) : SV_Target {
 
 #define COMPOSE_PASS(blend)                                   \
   pass Compose {                                              \
-    SetVertexShader(CompileShader(vs_5_0, VSFullscreen()));   \
+    SetVertexShader(CompileShader(vs_5_0, VSFullscreenTriangle()));   \
     SetGeometryShader(NULL);                                  \
     SetPixelShader(CompileShader(ps_5_0, PSCompose()));       \
     SetBlendState(blend, float4(0, 0, 0, 0), 0xFFFFFFFF);     \

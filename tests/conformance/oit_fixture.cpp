@@ -69,14 +69,7 @@ V main(uint vid : SV_VertexID) {
 })";
 
 // shaders_hlsl/oit/wboit_weight.hlsli, the one definition of Table 1's weight.
-std::string WeightSource() {
-  const std::string path = renderer::ShaderDirectory() + "/oit/wboit_weight.hlsli";
-  std::ifstream file(path);
-  if (!file) throw std::runtime_error("cannot read " + path);
-  std::stringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
+std::string WeightSource() { return ShaderSource("oit/wboit_weight.hlsli"); }
 
 std::string AccumulatePS(bool colored) {
   std::string s = R"(
@@ -157,40 +150,55 @@ OitTables LoadOitTables(Gpu& gpu, OitMethod method) {
   return tables;
 }
 
+std::string ShaderSource(const std::string& file) {
+  const std::string path = renderer::ShaderDirectory() + "/" + file;
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read " + path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::vector<float> RunFloatCompute(Gpu& gpu, const std::string& source, const void* inputs, UINT inputStride,
+                                   UINT inputCount, UINT outputCount) {
+  const std::vector<uint32_t> spirv = Gpu::Compile(source, "cs_5_0");
+  Device* device = gpu.device();
+  DeviceContext* ctx = gpu.context();
+  ComPtr<ComputeShader> shader;
+  ComPtr<Buffer> output, staging;
+  ComPtr<UnorderedAccessView> uav;
+  auto srv = gpu.StructuredSRV(inputs, inputStride, inputCount);
+  BUFFER_DESC outputDesc{outputCount * 4, USAGE_DEFAULT, BIND_UNORDERED_ACCESS, 0, RESOURCE_MISC_BUFFER_STRUCTURED, 4};
+  BUFFER_DESC stagingDesc{outputCount * 4, USAGE_STAGING, 0, CPU_ACCESS_READ, 0, 0};
+  if (device->CreateComputeShader(spirv.data(), spirv.size() * 4, nullptr, shader.GetAddressOf()) != S_OK ||
+      device->CreateBuffer(&outputDesc, nullptr, output.GetAddressOf()) != S_OK ||
+      device->CreateUnorderedAccessView(output.Get(), nullptr, uav.GetAddressOf()) != S_OK ||
+      device->CreateBuffer(&stagingDesc, nullptr, staging.GetAddressOf()) != S_OK)
+    throw std::runtime_error("RunFloatCompute: creating the compute pass failed");
+  ShaderResourceView* view = srv.Get();
+  UnorderedAccessView* out = uav.Get();
+  ctx->CSSetShader(shader.Get(), nullptr, 0);
+  ctx->CSSetShaderResources(0, 1, &view);
+  ctx->CSSetUnorderedAccessViews(0, 1, &out, nullptr);
+  ctx->Dispatch(inputCount, 1, 1);
+  ctx->ClearState();
+  ctx->CopyResource(staging.Get(), output.Get());
+  MAPPED_SUBRESOURCE mapped{};
+  if (ctx->Map(staging.Get(), 0, MAP_READ, 0, &mapped) != S_OK) throw std::runtime_error("RunFloatCompute: Map failed");
+  std::vector<float> values(static_cast<const float*>(mapped.pData),
+                            static_cast<const float*>(mapped.pData) + outputCount);
+  ctx->Unmap(staging.Get(), 0);
+  return values;
+}
+
 std::vector<float> WboitWeights(Gpu& gpu, const std::vector<std::array<float, 2>>& alphaDepth) {
   const std::string cs = WeightSource() + R"(
 StructuredBuffer<float2> Inputs : register(t0);
 RWStructuredBuffer<float> Weights : register(u0);
 [numthreads(1, 1, 1)] void main(uint3 id : SV_DispatchThreadID) { Weights[id.x] = WboitWeight(Inputs[id.x].x, Inputs[id.x].y); }
 )";
-  const std::vector<uint32_t> spirv = Gpu::Compile(cs, "cs_5_0");
-  Device* device = gpu.device();
-  DeviceContext* ctx = gpu.context();
   const UINT n = static_cast<UINT>(alphaDepth.size());
-  ComPtr<ComputeShader> shader;
-  ComPtr<Buffer> output, staging;
-  ComPtr<UnorderedAccessView> uav;
-  auto inputs = gpu.StructuredSRV(alphaDepth.data(), sizeof(float) * 2, n);
-  BUFFER_DESC outputDesc{n * 4, USAGE_DEFAULT, BIND_UNORDERED_ACCESS, 0, RESOURCE_MISC_BUFFER_STRUCTURED, 4};
-  BUFFER_DESC stagingDesc{n * 4, USAGE_STAGING, 0, CPU_ACCESS_READ, 0, 0};
-  if (device->CreateComputeShader(spirv.data(), spirv.size() * 4, nullptr, shader.GetAddressOf()) != S_OK ||
-      device->CreateBuffer(&outputDesc, nullptr, output.GetAddressOf()) != S_OK ||
-      device->CreateUnorderedAccessView(output.Get(), nullptr, uav.GetAddressOf()) != S_OK ||
-      device->CreateBuffer(&stagingDesc, nullptr, staging.GetAddressOf()) != S_OK)
-    throw std::runtime_error("WboitWeights: creating the compute pass failed");
-  ShaderResourceView* srv = inputs.Get();
-  UnorderedAccessView* view = uav.Get();
-  ctx->CSSetShader(shader.Get(), nullptr, 0);
-  ctx->CSSetShaderResources(0, 1, &srv);
-  ctx->CSSetUnorderedAccessViews(0, 1, &view, nullptr);
-  ctx->Dispatch(n, 1, 1);
-  ctx->ClearState();
-  ctx->CopyResource(staging.Get(), output.Get());
-  MAPPED_SUBRESOURCE mapped{};
-  if (ctx->Map(staging.Get(), 0, MAP_READ, 0, &mapped) != S_OK) throw std::runtime_error("WboitWeights: Map failed");
-  std::vector<float> weights(static_cast<const float*>(mapped.pData), static_cast<const float*>(mapped.pData) + n);
-  ctx->Unmap(staging.Get(), 0);
-  return weights;
+  return RunFloatCompute(gpu, cs, alphaDepth.data(), sizeof(float) * 2, n, n);
 }
 
 OitResult RunOitFixture(Gpu& gpu, OitMethod method, const OitScene& scene) {

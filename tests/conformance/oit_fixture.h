@@ -62,4 +62,13 @@ std::vector<float> WboitWeights(Gpu& gpu, const std::vector<std::array<float, 2>
 
 OitResult RunOitFixture(Gpu& gpu, OitMethod method, const OitScene& scene);
 
+// The text of shaders_hlsl/<file>, for test shaders that include the renderer's own code.
+std::string ShaderSource(const std::string& file);
+
+// Runs the compute shader `source` (cs_5_0, entry main) once per input, Dispatch(inputCount,
+// 1, 1): t0 a StructuredBuffer of the inputs (inputStride bytes each), u0 a
+// RWStructuredBuffer<float> of outputCount floats, which it returns.
+std::vector<float> RunFloatCompute(Gpu& gpu, const std::string& source, const void* inputs, UINT inputStride,
+                                   UINT inputCount, UINT outputCount);
+
 }  // namespace conf

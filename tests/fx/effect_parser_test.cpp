@@ -236,19 +236,17 @@ TEST_F(SceneEffect, ShadersAndVariants) {
   EXPECT_EQ(Ast().shaderVariables[1].shaders, std::vector<int>{1});
   EXPECT_EQ(Ast().shaderVariables[2].shaders, std::vector<int>{2});
 
-  EXPECT_NE(Ast().hlsl.find("\n#line 1 \"fx_variants\"\n"
-                            "// fx_variant_0: PSMain(true, 2)\n"
-                            "float4 fx_variant_0(PSInput input) : SV_Target\n"
-                            "{\n"
-                            "    return PSMain(input, (true), (2));\n"
-                            "}\n"
-                            "// fx_variant_1: PSMain(false, 1)\n"
-                            "float4 fx_variant_1(PSInput input) : SV_Target\n"
-                            "{\n"
-                            "    return PSMain(input, (false), (1));\n"
-                            "}\n"),
+  // Each variant's call sits on its CompileShader's line (#line), the first
+  // uniform argument at its column, so that errors in arguments point there.
+  const std::string line140 = "#line 140 \"" + kScene + "\"\n";
+  EXPECT_NE(Ast().hlsl.find("// fx_variant_0: PSMain(true, 2)\n" + line140 +
+                            "float4 fx_variant_0(PSInput input) : SV_Target {\n" + line140),
             std::string::npos)
       << Ast().hlsl;
+  std::string call = HlslLineWith("return PSMain(input, true, 2); }");
+  EXPECT_EQ(call.find("true"), std::string("        SetPixelShader(CompileShader(ps_5_0, PSMain(").size()) << call;
+  EXPECT_NE(Ast().hlsl.find("// fx_variant_1: PSMain(false, 1)\n#line 148 \""), std::string::npos) << Ast().hlsl;
+  EXPECT_NE(HlslLineWith("return PSMain(input, false, 1); }").find("return"), std::string::npos);
 }
 
 TEST_F(SceneEffect, TechniquesAndPasses) {
@@ -422,20 +420,66 @@ TEST(EffectParser, VariantsKeepAttributesAndNonUniformParameters) {
   EXPECT_EQ(ast.shaders[0].uniformArgs, (std::vector<std::string>{"2.5", "false"}));
   EXPECT_EQ(ast.shaders[0].entryPoint, "fx_variant_0");
   EXPECT_EQ(ast.shaders[1].entryPoint, "fx_variant_1");
+  // Each on one line at its CompileShader's position, so an error in an argument points there.
+  // The first uniform argument lands at its column on the CompileShader's line:
+  // `GeometryShader g = ConstructGSWithSO(CompileShader(gs_5_0, GS(` is 62 characters.
   EXPECT_NE(ast.hlsl.find("// fx_variant_0: GS(2.5, false)\n"
-                          "[maxvertexcount(4)]\n"
-                          "void fx_variant_0(point V input[1], inout TriangleStream<V> s)\n"
-                          "{\n"
-                          "    GS(input, s, (2.5), (false));\n"
-                          "}\n"),
+                          "#line 7 \"test.fx\"\n"
+                          "[maxvertexcount(4)] void fx_variant_0(point V input[1], inout TriangleStream<V> s) {\n"
+                          "#line 7 \"test.fx\"\n" +
+                          std::string(62 - std::string("GS(input, s, ").size(), ' ') +
+                          "GS(input, s, 2.5, false); }\n"),
             std::string::npos)
       << ast.hlsl;
-  EXPECT_NE(ast.hlsl.find("[numthreads(8, 8, 1)]\n"
-                          "void fx_variant_1(uint3 id : SV_DispatchThreadID)\n"
-                          "{\n"
-                          "    CS(id, (1 + 2));\n"),
+  EXPECT_NE(ast.hlsl.find("#line 8 \"test.fx\"\n"
+                          "[numthreads(8, 8, 1)] void fx_variant_1(uint3 id : SV_DispatchThreadID) {\n"
+                          "#line 8 \"test.fx\"\n"),
             std::string::npos)
       << ast.hlsl;
+  EXPECT_NE(ast.hlsl.find("CS(id, (1 + 2)); }\n"), std::string::npos) << ast.hlsl;
+}
+
+// fxc: a static inside a cbuffer is no member (the layout skips it) but sizes
+// arrays; the HLSL gets it before the cbuffer, between #line directives.
+TEST(EffectParser, CbufferStaticsAreHoistedOutOfTheLayout) {
+  EffectAst ast = MustParse(
+      "cbuffer PerFrame\n"
+      "{\n"
+      "    float4 tint;\n"
+      "    static const int kCount = 4;\n"
+      "    float4 items[kCount];\n"
+      "};\n");
+  ASSERT_EQ(ast.cbuffers.size(), 1u);
+  const ConstantBuffer& cb = ast.cbuffers[0];
+  ASSERT_EQ(cb.variables.size(), 2u);
+  EXPECT_EQ(cb.variables[1].name, "items");
+  EXPECT_EQ(cb.variables[1].offset, 16u);
+  EXPECT_EQ(cb.variables[1].type.arrayDims, (std::vector<uint32_t>{4}));
+  EXPECT_EQ(cb.size, 80u);
+  EXPECT_NE(ast.hlsl.find("#line 4 \"test.fx\"\nstatic const int kCount = 4;\n#line 1 \"test.fx\"\ncbuffer PerFrame"),
+            std::string::npos)
+      << ast.hlsl;
+  EXPECT_EQ(ast.hlsl.find("static", ast.hlsl.find("cbuffer")), std::string::npos) << ast.hlsl;
+}
+
+// PS() and PS(uniform int) in one file: each CompileShader picks its overload
+// by the uniform arguments, and both compile through a wrapper (glslang finds
+// no entry point by an overloaded name).
+TEST(EffectParser, OverloadsArePickedByTheirUniformArguments) {
+  EffectAst ast = MustParse(
+      "float4 PS() : SV_Target { return 1; }\n"
+      "float4 PS(uniform int index, uniform float scale = 2) : SV_Target { return index * scale; }\n"
+      "float4 PS(uniform int index) : SV_Target { return index; }\n"
+      "PixelShader a = CompileShader(ps_5_0, PS());\n"
+      "PixelShader b = CompileShader(ps_5_0, PS(3));\n"
+      "PixelShader c = CompileShader(ps_5_0, PS(3, 4));\n");
+  ASSERT_EQ(ast.shaders.size(), 3u);
+  EXPECT_EQ(ast.shaders[0].entryPoint, "fx_variant_0");
+  EXPECT_NE(ast.hlsl.find("fx_variant_0()"), std::string::npos);
+  EXPECT_NE(ast.hlsl.find("return PS();"), std::string::npos) << ast.hlsl;
+  EXPECT_EQ(ast.shaders[1].uniformArgs, (std::vector<std::string>{"3"}));  // the exact overload, not the defaulted one
+  EXPECT_NE(ast.hlsl.find("// fx_variant_1: PS(3)\n"), std::string::npos) << ast.hlsl;
+  EXPECT_EQ(ast.shaders[2].uniformArgs, (std::vector<std::string>{"3", "4"}));
 }
 
 TEST(EffectParser, UavsAndTemplatedResources) {

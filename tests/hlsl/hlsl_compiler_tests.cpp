@@ -695,11 +695,12 @@ TEST(HlslDiagnostics, FormatErrorsListsEveryError) {
   const CompileResult r = Compile(source, "main", "ps_5_0", "two.hlsl");
   ASSERT_GE(r.errors.size(), 2u);
   // glslang's HLSL parser gives up on the expression after the unknown name; the
-  // follow-up error quotes no source token, so its column is unknown (0).
+  // follow-up error quotes no source token, so it gets the column where glslang
+  // says the parse stopped (after "return a +").
   const std::string text = r.FormatErrors();
   EXPECT_EQ(text.substr(0, text.find('\n', text.find('\n') + 1) + 1),
             "two.hlsl:2:10: error: 'a' : unknown variable\n"
-            "two.hlsl:2:0: error: 'expression' : Expected\n");
+            "two.hlsl:2:13: error: 'expression' : Expected\n");
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), static_cast<long>(r.errors.size()));
 }
 

@@ -13,6 +13,8 @@
 //  from
 //    the recorded fragments (sorted by depth, then triangle id), and each
 //    other;
+//  - the opaque pixels shaded from the visibility buffer equal the forward-shaded ones;
+//  - depth peeling with enough layers equals prefix-sum on every scene;
 //  - a pool too small for the frame reports exactly the fragments it lost;
 //  - a scene of several objects is refused with the reason.
 #include <algorithm>
@@ -146,10 +148,10 @@ const MethodInfo kRecord{"record",
 struct SceneCase {
   const char* scene;
   int frames;  // the frame recorded and compared is the last
-  // Of ShadeTriangle against Shade: 1/255; the billboards 1.5/255, where the
-  // puff's density is steepest and the rasterizer's interpolated uv
-  // (lavapipe: 1.4/255 at worst) differs from the exact point where the pixel's
-  // ray meets the billboard.
+  // Of ShadeTriangle against Shade: 1/255; the billboards 2/255, where the
+  // puff's density is steepest and the rasterizer's interpolated uv differs from
+  // the exact point where the pixel's ray meets the billboard (at worst 1.4/255 on
+  // lavapipe, 1.9/255 on an NVIDIA H100).
   float shadeTolerance;
 };
 
@@ -204,9 +206,9 @@ TEST_P(FragmentBufferTest, DeferredShadingEqualsForwardShadingForEveryFragment) 
   EXPECT_LE(worst, GetParam().shadeTolerance);
 }
 
-// Front to back in double: C += T a c, T *= 1 - a (1 - t) for coloured
+// Front to back in double: C += T a saturate(c), T *= 1 - a (1 - t) for coloured
 // transmission (shards), 1 - a otherwise; frame = C + T * opaque; stored as
-// RGBA8 rounds.
+// RGBA8 rounds. (saturate: the exact methods' SurfaceColour, oit/common.fxh.)
 std::vector<uint8_t> CpuComposite(std::vector<FragmentRecord> records, const std::vector<uint8_t>& opaque,
                                   bool coloredTransmission) {
   std::sort(records.begin(), records.end(), [](const FragmentRecord& a, const FragmentRecord& b) {
@@ -221,7 +223,7 @@ std::vector<uint8_t> CpuComposite(std::vector<FragmentRecord> records, const std
       const FragmentRecord& r = records[i];
       for (int c = 0; c < 3; ++c) {
         const double a = r.deferred[3];
-        C[c] += T[c] * a * r.deferred[c];
+        C[c] += T[c] * a * std::clamp(double(r.deferred[c]), 0.0, 1.0);
         T[c] *= coloredTransmission ? 1.0 - a * (1.0 - r.deferredTransmission[c]) : 1.0 - a;
       }
     }
@@ -283,11 +285,99 @@ TEST_P(FragmentBufferTest, LinkedListEqualsPrefixSum) {
   EXPECT_LE(LargestDifference(images[0], images[1]), 1);
 }
 
+// Document 004's opaque pixels come from the visibility buffer: where no translucent
+// fragment lies (count 0), prefix-sum's frame is the opaque backdrop shaded from its
+// triangle ids, which must equal the forward-shaded backdrop (the recording method's
+// frame: scene.fx Opaque/Scene) within one 8-bit step. The backdrop must show.
+TEST_P(FragmentBufferTest, TheVisibilityBufferShadesTheOpaquePixelsAsForwardShadingDoes) {
+  const TranslucencySettings s = Settings(GetParam().scene);
+  auto recording = Make(s);
+  ASSERT_TRUE(recording);
+  const std::vector<uint8_t> forward = Render(*recording, kRecord, GetParam().frames);
+  const MethodInfo& prefixSum = *renderer::oit::FindMethod("prefix-sum");
+  auto t = Make(s);
+  ASSERT_TRUE(t);
+  const std::vector<uint8_t> deferred = Render(*t, prefixSum, GetParam().frames);
+  const auto frame = renderer::oit::ReadPrefixSumFrame(*t->MethodInstance(prefixSum), context.Get());
+  ASSERT_TRUE(frame);
+  int worst = 0;
+  size_t opaquePixels = 0, backdrop = 0;
+  for (size_t pixel = 0; pixel < frame->counts.size(); ++pixel) {
+    if (frame->counts[pixel] != 0) continue;
+    ++opaquePixels;
+    bool sky = true;
+    for (int c = 0; c < 3; ++c) {
+      worst = std::max(worst, std::abs(int(forward[pixel * 4 + c]) - int(deferred[pixel * 4 + c])));
+      sky = sky && std::abs(forward[pixel * 4 + c] - renderer::kSkyColour[c] * 255.0f) <= 0.5f;
+    }
+    backdrop += !sky;
+  }
+  EXPECT_GT(opaquePixels, frame->counts.size() / 10);
+  EXPECT_GT(backdrop, opaquePixels / 4) << "the backdrop shows";
+  EXPECT_LE(worst, 1);
+}
+
+// Exact means exact: depth peeling with as many layers as the deepest pixel has
+// fragments (prefix-sum's counts say how many) composites the same image as
+// prefix-sum, within one 8-bit step where both shade alike (ShadeTriangle against
+// Shade: 1/255) and two on the billboards, whose deferred shading differs from the
+// rasterizer's interpolation by up to shadeTolerance (2/255: the test above).
+// Except where two fragments of a pixel lie at the same depth: a peel keeps what lies
+// strictly behind the last layer, so depth peeling keeps one of them (document 002's
+// method cannot part coplanar surfaces; the smoke's newborn particles share their
+// emitter's centre). Those pixels are found from the recorded fragments and left out.
+TEST_P(FragmentBufferTest, DepthPeelingWithEnoughLayersEqualsPrefixSum) {
+  TranslucencySettings s = Settings(GetParam().scene);
+  const MethodInfo& prefixSum = *renderer::oit::FindMethod("prefix-sum");
+  auto exact = Make(s);
+  ASSERT_TRUE(exact);
+  const std::vector<uint8_t> want = Render(*exact, prefixSum, GetParam().frames);
+  const auto frame = renderer::oit::ReadPrefixSumFrame(*exact->MethodInstance(prefixSum), context.Get());
+  ASSERT_TRUE(frame);
+  s.peelLayers = *std::max_element(frame->counts.begin(), frame->counts.end());
+  ASSERT_GT(s.peelLayers, 1u);
+  auto peeled = Make(s);
+  ASSERT_TRUE(peeled);
+  const std::vector<uint8_t> got = Render(*peeled, *renderer::oit::FindMethod("depth-peeling"), GetParam().frames);
+  auto recording = Make(s);
+  ASSERT_TRUE(recording);
+  Render(*recording, kRecord, GetParam().frames);
+  std::vector<FragmentRecord> records = Records(*recording);
+  std::sort(records.begin(), records.end(), [](const FragmentRecord& a, const FragmentRecord& b) {
+    return a.pixel != b.pixel ? a.pixel < b.pixel : a.depth < b.depth;
+  });
+  std::vector<bool> tied(frame->counts.size());
+  for (size_t i = 1; i < records.size(); ++i)
+    if (records[i].pixel == records[i - 1].pixel && records[i].depth == records[i - 1].depth &&
+        records[i].deferred[3] > 0 && records[i - 1].deferred[3] > 0)  // a = 0 takes no layer
+      tied[records[i].pixel] = true;
+  const int tolerance = GetParam().shadeTolerance > 1 / 255.0f ? 2 : 1;
+  int worst = 0;
+  size_t compared = 0, worstPixel = 0;
+  for (size_t pixel = 0; pixel < tied.size(); ++pixel) {
+    if (tied[pixel]) continue;
+    compared += frame->counts[pixel] > 1;
+    for (int c = 0; c < 3; ++c)
+      if (const int d = std::abs(int(got[pixel * 4 + c]) - int(want[pixel * 4 + c])); d > worst)
+        worst = d, worstPixel = pixel;
+  }
+  EXPECT_GT(compared, 20u) << "pixels of several fragments";
+  EXPECT_LE(worst, tolerance) << s.peelLayers << " layers; " << std::count(tied.begin(), tied.end(), true)
+                              << " pixels with a depth tie left out; the worst at (" << worstPixel % s.width << ", "
+                              << worstPixel / s.width << "), " << frame->counts[worstPixel] << " fragments";
+}
+
 INSTANTIATE_TEST_SUITE_P(Scenes, FragmentBufferTest,
-                         ::testing::Values(SceneCase{"shards", 1, 1 / 255.0f}, SceneCase{"smoke", 20, 1.5f / 255},
-                                           SceneCase{"fire", 20, 1.5f / 255}, SceneCase{"complexity", 1, 1 / 255.0f},
-                                           SceneCase{"teapot", 1, 1 / 255.0f}),
-                         [](const ::testing::TestParamInfo<SceneCase>& info) { return std::string(info.param.scene); });
+                         ::testing::Values(SceneCase{"shards", 1, 1 / 255.0f}, SceneCase{"smoke", 20, 2 / 255.0f},
+                                           SceneCase{"fire", 20, 2 / 255.0f}, SceneCase{"complexity", 1, 1 / 255.0f},
+                                           SceneCase{"teapot", 1, 1 / 255.0f}, SceneCase{"cubes", 1, 1 / 255.0f},
+                                           SceneCase{"ice-in-cup", 1, 1 / 255.0f},
+                                           SceneCase{"magic-circle", 1, 1 / 255.0f}),
+                         [](const ::testing::TestParamInfo<SceneCase>& info) {
+                           std::string name = info.param.scene;  // gtest names: no '-'
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
 
 // ---------------------------------------------------------------------------
 

@@ -56,7 +56,8 @@ TEST_F(MethodFamilyTest, NeedsAreDescribedInWords) {
 }
 
 // Each method's passes, as Method::PassNames says, are the passes the frame applies
-// after the opaque pass and the object updates (their "technique/pass" markers).
+// after the opaque pass (forward or into the visibility buffer) and the object
+// updates (their "technique/pass" markers).
 TEST_F(MethodFamilyTest, EveryMethodAppliesThePassesItNames) {
   for (const char* scene : {"smoke", "shards"})
     for (const MethodInfo* method : renderer::oit::Methods()) {
@@ -69,7 +70,9 @@ TEST_F(MethodFamilyTest, EveryMethodAppliesThePassesItNames) {
       ASSERT_TRUE(t->RenderFrame(*method)) << t->error();
       std::vector<std::string> passes;
       for (const std::string& marker : trace.Filter({"SetMarker"})) {
-        if (marker == "SetMarker(Opaque/Scene)" || marker == "SetMarker(Update/StreamOut)") continue;
+        if (marker == "SetMarker(Opaque/Scene)" || marker == "SetMarker(Visibility/Ids)" ||
+            marker == "SetMarker(Update/StreamOut)")
+          continue;
         passes.push_back(marker.substr(marker.find('/') + 1, marker.size() - marker.find('/') - 2));
       }
       const renderer::oit::Method* instance = t->MethodInstance(*method);
@@ -95,9 +98,11 @@ TEST_F(MethodFamilyTest, FramesRaiseNoHazardWarnings) {
 // Memory: the targets a method creates, computed here from their formats
 // (accum R16G16B16A16_FLOAT: 8 bytes, revealage R8_UNORM: 1 byte per pixel).
 // Depth peeling, N = 8 layers: two R32_TYPELESS depth buffers (4 bytes each) and
-// per layer an R16G16B16A16_FLOAT colour and transmission (8 + 8). Dual depth
+// per layer an R16G16B16A16_FLOAT colour and opacity (8 + 8), and the
+// R32G32B32A32_FLOAT composite (16) the layers blend over. Dual depth
 // peeling: two R32G32_FLOAT depth ranges (8 each), two front colours and two front
-// opacities (R16G16B16A16_FLOAT, 8 each), one back colour and one back opacity (8 each).
+// opacities (R16G16B16A16_FLOAT, 8 each), one back colour and one back opacity (8 each),
+// and the same composite.
 TEST_F(MethodFamilyTest, MethodsReportTheMemoryOfTheirTargets) {
   auto t = Make("shards");
   ASSERT_TRUE(t);
@@ -110,10 +115,17 @@ TEST_F(MethodFamilyTest, MethodsReportTheMemoryOfTheirTargets) {
                    {"wboit", pixels * 9},
                    {"colored", pixels * 9},
                    {"colored-literal", pixels * 9},
-                   {"depth-peeling", pixels * (2 * 4 + layers * (8 + 8))},
-                   {"dual-depth-peeling", pixels * (2 * 8 + 2 * 8 + 2 * 8 + 8 + 8)},
+                   // two depth buffers, a colour and an opacity layer (RGBA16F) each, the float32 composite
+                   {"depth-peeling", pixels * (2 * 4 + layers * (8 + 8) + 16)},
+                   {"dual-depth-peeling", pixels * (2 * 8 + 2 * 8 + 2 * 8 + 8 + 8 + 16)},
                    // a node pool of 16 a pixel (the default), 12 bytes a node, and a 4-byte head a pixel
-                   {"linked-list", pixels * 16 * 12 + pixels * 4}};
+                   {"linked-list", pixels * 16 * 12 + pixels * 4},
+                   // document 003: b0 R32_FLOAT (4), b1..b4 R32G32B32A32_FLOAT (16), accum
+                   // R16G16B16A16_FLOAT (8); the correction's nearest depth R32_FLOAT (4) or R16_FLOAT (2)
+                   {"mboit", pixels * (4 + 16 + 8)},
+                   {"moment-transparency", pixels * (4 + 16 + 8)},
+                   {"moment-transparency-mindepth", pixels * (4 + 16 + 8 + 4)},
+                   {"moment-transparency-mindepth-r16", pixels * (4 + 16 + 8 + 2)}};
   for (const auto& e : kExpected) {
     const MethodInfo* method = renderer::oit::FindMethod(e.method);
     ASSERT_NE(method, nullptr) << e.method;

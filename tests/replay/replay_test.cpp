@@ -150,7 +150,7 @@ TEST_F(ReplayTest, ParticleCountAfterNFramesEqualsTheCpuModel) {
 }
 
 TEST_F(ReplayTest, TheSameFrameRenderedTwiceIsBitIdentical) {
-  for (const char* scene : {"smoke", "shards", "teapot", "complexity"})
+  for (const char* scene : {"smoke", "shards", "teapot", "complexity", "magic-circle"})
     for (const MethodInfo* method : renderer::oit::Methods()) {
       // Lavapipe breaks the linked lists along triangle edges, not always alike
       // (fragment_buffer_test.cpp): that method's frames differ there.

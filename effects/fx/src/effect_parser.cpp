@@ -54,6 +54,20 @@ constexpr ResourceName kResourceNames[] = {
     {"ConsumeStructuredBuffer", ResourceKind::ConsumeStructuredBuffer},
 };
 
+// The spelling glslang knows of an object type that fxc takes in any case
+// (D3D9 files write texture2D, textureCUBE), e.g. "texture2D" -> "Texture2D";
+// `type` itself when it is no such keyword. Other type names (Buffer, ...)
+// are case-sensitive, so `buffer` stays a name.
+std::string_view CanonicalObjectType(std::string_view type) {
+  static constexpr std::string_view kAnyCase[] = {
+      "Texture1D", "Texture2D", "Texture3D", "TextureCube", "SamplerState", "SamplerComparisonState",
+      "sampler1D", "sampler2D", "sampler3D", "samplerCUBE"};
+  for (std::string_view name : kAnyCase) {
+    if (EqualsIgnoreCase(name, type)) return name;
+  }
+  return type;
+}
+
 std::optional<ResourceKind> ResourceKindOf(const std::string& type) {
   for (const ResourceName& r : kResourceNames) {
     if (r.name == type) return r.kind;
@@ -148,6 +162,14 @@ EffectParser::EffectParser(PreprocessedSource source) : hlsl_(std::move(source.t
     } else {
       t_.push_back(std::move(t));
     }
+  }
+  // fxc takes `texture2D` for Texture2D; glslang only the canonical spelling.
+  for (Token& t : t_) {
+    if (t.kind != TokenKind::Identifier) continue;
+    std::string_view canonical = CanonicalObjectType(t.text);
+    if (canonical == t.text) continue;
+    hlsl_.replace(t.offset, canonical.size(), canonical);  // only the case differs
+    t.text = canonical;
   }
   end_.kind = TokenKind::Invalid;
   end_.text = "end of file";
@@ -278,6 +300,29 @@ void EffectParser::Blank(size_t firstToken, size_t lastToken) {
   }
 }
 
+std::string LineDirective(const SourceLocation& where) {
+  std::string s = "#line " + std::to_string(where.line) + " \"";
+  for (char c : where.file) {
+    if (c == '"' || c == '\\') s += '\\';
+    s += c;
+  }
+  return s + "\"\n";
+}
+
+void EffectParser::Hoist(size_t first, size_t last, size_t before) {
+  size_t at = t_[before].offset;
+  while (at > 0 && hlsl_[at - 1] != '\n') --at;
+  std::string text = LineDirective(t_[first].where) + Spell(first, last + 1) + "\n" + LineDirective(t_[before].where);
+  hoists_.emplace_back(at, std::move(text));
+  Blank(first, last);
+}
+
+std::string EffectParser::ApplyHoists(std::string text) const {
+  // In reverse, so earlier offsets stay valid; equal offsets keep source order.
+  for (auto it = hoists_.rbegin(); it != hoists_.rend(); ++it) text.insert(it->first, it->second);
+  return text;
+}
+
 // ---------------------------------------------------------------------------
 // Top level
 
@@ -292,7 +337,7 @@ Result<EffectAst> EffectParser::Run() {
     globals_->buffer.defaults.resize(globals_->buffer.size);
     ast_.cbuffers.insert(ast_.cbuffers.begin(), std::move(globals_->buffer));
   }
-  ast_.hlsl = std::move(hlsl_) + VariantSource();
+  ast_.hlsl = ApplyHoists(std::move(hlsl_)) + VariantSource();
   return std::move(ast_);
 }
 
@@ -347,6 +392,7 @@ void EffectParser::ApplyPragmas() {
 // [shared] cbuffer|tbuffer Name [: register(bN)] { declarations } [;]
 void EffectParser::ParseBuffer() {
   BufferBuilder b;
+  b.firstToken = pos_;
   if (IsIdent(0, "shared")) {
     b.buffer.shared = true;
     Blank(pos_, pos_);
@@ -575,11 +621,16 @@ std::vector<Annotation> EffectParser::ParseAnnotations() {
     if (Accept(";")) continue;
     Annotation a;
     if (IsIdent(0, "const")) ++pos_;
-    a.type = ExpectIdentifier("an annotation type").text;
+    const Token& typeToken = ExpectIdentifier("an annotation type");
+    a.type = typeToken.text;
     const Token& name = ExpectIdentifier("an annotation name");
     a.name = name.text;
     a.where = name.where;
-    while (IsPunct(0, "[")) SkipBalanced();
+    std::vector<uint32_t> dims;
+    while (IsPunct(0, "[")) {
+      size_t open = pos_, close = SkipBalanced();
+      dims.push_back(EvaluateUInt(open + 1, close, "array size", 1, kMaxConstantBufferBytes));
+    }
     Expect("=", "in the annotation");
     size_t begin = pos_, end = FindAtDepthZero({";"});
     if (a.type == "string") {
@@ -593,6 +644,13 @@ std::vector<Annotation> EffectParser::ParseAnnotations() {
       }
     } else {
       a.values = Evaluate(begin, end, "annotation value").components;
+      std::optional<VariableType> type = types_.Resolve(a.type, {}, rowMajorDefault_);
+      if (!type) Fatal(typeToken, "unknown annotation type '" + a.type + "'");
+      type->arrayDims = dims;
+      if (std::optional<std::string> e = ComputeLayout(*type)) Fatal(typeToken, *e);
+      a.valueType = *type;
+      a.bytes.resize(AlignUp16(type->size));
+      if (std::optional<std::string> e = WriteInitializer(*type, a.values, a.bytes, 0)) Error(name, *e);
     }
     pos_ = end;
     Expect(";", "after the annotation");
@@ -676,12 +734,21 @@ void EffectParser::ParseDeclarators(const DeclSpec& spec, BufferBuilder* buffer)
     Fatal(Peek(), "expected ';' after '" + d.name + "', found '" + Peek().text + "'");
   }
   // Effect-only declarations vanish from the HLSL; the others lose what glslang rejects.
+  // FX10's untyped `texture` only names a resource for the effect: shaders sample typed ones.
+  bool untypedTexture = kind == Kind::Resource && *resource == ResourceKind::Texture;
   if (kind == Kind::Blend || kind == Kind::DepthStencil || kind == Kind::Rasterizer || kind == Kind::Shader ||
-      kind == Kind::String) {
+      kind == Kind::String || untypedTexture) {
     Blank(spec.start, pos_ - 1);
     return;
   }
-  bool uniform = kind == Kind::Numeric && !spec.modifiers.count("static") && !spec.modifiers.count("groupshared");
+  bool isStatic = spec.modifiers.count("static") != 0;
+  if (buffer && kind == Kind::Numeric && isStatic) {
+    // fxc: a static inside a cbuffer is no member of it, only scoped there;
+    // glslang takes no such declaration, so it moves out, before the cbuffer.
+    Hoist(spec.start, pos_ - 1, buffer->firstToken);
+    return;
+  }
+  bool uniform = kind == Kind::Numeric && !isStatic && !spec.modifiers.count("groupshared");
   for (size_t i : spec.modifierTokens) {
     const std::string& m = t_[i].text;
     if (m == "shared" || (uniform && (m == "const" || m == "extern"))) Blank(i, i);

@@ -73,6 +73,7 @@ struct Declarator {
 struct BufferBuilder {
   ConstantBuffer buffer;
   uint32_t used = 0;  // bytes taken so far
+  size_t firstToken = 0;  // `cbuffer` (or `shared`): where its static declarations move to
 };
 
 // A shader named or built by an expression in a pass or a shader variable.
@@ -114,6 +115,10 @@ class EffectParser {
 
   // ---- HLSL editing ----
   void Blank(size_t firstToken, size_t lastToken);  // inclusive
+  // Moves the declaration [first, last] to just before the line of token
+  // `before`, between #line directives, so every position stays true.
+  void Hoist(size_t first, size_t last, size_t before);
+  std::string ApplyHoists(std::string text) const;
 
   // ---- declarations (effect_parser.cpp) ----
   void ParseTopLevel();
@@ -168,6 +173,7 @@ class EffectParser {
   void ParseFunction(const DeclSpec& spec, size_t attributesStart);
   void ParseParameter(FunctionInfo& f, size_t begin, size_t end);
   bool IsIdentAt(size_t index, std::string_view name) const;
+  void RefuseD3D9TextureFunctions(size_t begin, size_t end);  // tokens of a function body
   // The entry point glslang compiles for `function` with `args` bound to its
   // uniform parameters (defaults appended to `args`); generates a variant when needed.
   std::string EntryPointFor(const Token& at, const std::string& function, std::vector<std::string>& args);
@@ -189,9 +195,13 @@ class EffectParser {
   std::map<std::string, std::vector<FunctionInfo>> functions_;
   std::map<std::string, std::string> variants_;  // "Function(args)" -> fx_variant_N
   std::vector<std::string> variantCode_;
+  std::vector<std::pair<size_t, std::string>> hoists_;  // (offset in hlsl_, text inserted there)
 };
 
 bool EqualsIgnoreCase(std::string_view a, std::string_view b);
+
+// `#line N "file"` and a newline: what follows is reported at `where`'s line.
+std::string LineDirective(const SourceLocation& where);
 
 // The text of a string literal token, with C escapes resolved.
 std::string UnquoteString(const std::string& literal);

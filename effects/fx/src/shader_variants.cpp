@@ -3,12 +3,15 @@
 // fxc compiles `CompileShader(ps_5_0, PSMain(true, 3))` by treating the listed
 // arguments as compile-time values of PSMain's uniform parameters. glslang has
 // no such notion, so each distinct argument list gets a wrapper appended to the
-// HLSL:
-//     [attributes of PSMain]
-//     float4 fx_variant_0(PSIn input) : SV_Target { return PSMain(input, (true), (3)); }
+// HLSL, its call on the CompileShader's line (#line), the arguments at their column:
+//     [attributes of PSMain] float4 fx_variant_0(PSIn input) : SV_Target {
+//                                      return PSMain(input, true, (1 + 2)); }
 // It keeps PSMain's other parameters with their semantics, so its signature
 // is what fxc would have compiled. The `uniform` keywords themselves are blanked
-// from the HLSL: the original function becomes an ordinary one.
+// from the HLSL: the original function becomes an ordinary one. An overloaded
+// function (`PS()` and `PS(uniform int index)`) always goes through a wrapper,
+// even without uniform arguments: glslang finds no entry point by an
+// overloaded name, and the wrapper's call picks the overload.
 #include "effect_parser_impl.h"
 
 namespace fx {
@@ -51,7 +54,8 @@ void EffectParser::ParseFunction(const DeclSpec& spec, size_t attributesStart) {
   }
   if (Accept(":")) f.semantic = ExpectIdentifier("a semantic").text;
   if (IsPunct(0, "{")) {
-    SkipBalanced();
+    size_t bodyOpen = pos_;
+    RefuseD3D9TextureFunctions(bodyOpen, SkipBalanced());
     functions_[f.name].push_back(std::move(f));
   } else {
     Expect(";", "after the function declaration");
@@ -88,6 +92,26 @@ void EffectParser::ParseParameter(FunctionInfo& f, size_t begin, size_t end) {
   f.params.push_back(std::move(p));
 }
 
+// tex2D(s, uv) and its kin sample D3D9's combined samplers, which shader model
+// 4 and 5 only take under fxc's /Gec (backwards compatibility) and D3D11
+// cannot bind: a clear refusal instead of glslang compiling a combined sampler.
+void EffectParser::RefuseD3D9TextureFunctions(size_t begin, size_t end) {
+  for (size_t i = begin; i < end; ++i) {
+    const Token& t = t_[i];
+    if (t.kind != TokenKind::Identifier || !IsPunctAt(i + 1, "(") || t.text.rfind("tex", 0) != 0) continue;
+    std::string_view rest = std::string_view(t.text).substr(3);
+    for (std::string_view dim : {"1D", "2D", "3D", "CUBE"}) {
+      if (!rest.starts_with(dim)) continue;
+      std::string_view suffix = rest.substr(dim.size());
+      if (suffix.empty() || suffix == "bias" || suffix == "grad" || suffix == "lod" || suffix == "proj") {
+        Error(t, "'" + t.text + "' is a D3D9 texture function, which fx_5_0 shaders do not take: declare a Texture" +
+                     (dim == "CUBE" ? std::string("Cube") : std::string(dim)) + " and a SamplerState and call " +
+                     "texture.Sample(sampler, uv)");
+      }
+    }
+  }
+}
+
 bool EffectParser::IsIdentAt(size_t index, std::string_view name) const {
   return index < t_.size() && t_[index].kind == TokenKind::Identifier && t_[index].text == name;
 }
@@ -95,55 +119,79 @@ bool EffectParser::IsIdentAt(size_t index, std::string_view name) const {
 std::string EffectParser::EntryPointFor(const Token& at, const std::string& function, std::vector<std::string>& args) {
   auto it = functions_.find(function);
   if (it == functions_.end()) Fatal(at, "unknown shader function '" + function + "'");
-  // The first overload whose uniform parameters the arguments can bind.
+  // fxc picks the overload by the uniform arguments: one whose uniform
+  // parameters they fill exactly, else the first that defaults fill up.
   const FunctionInfo* chosen = nullptr;
   size_t overload = 0;
   std::vector<const FunctionInfo::Param*> uniforms;
   std::string problem;
-  for (size_t i = 0; i < it->second.size() && !chosen; ++i) {
-    const FunctionInfo& f = it->second[i];
-    uniforms.clear();
+  auto uniformsOf = [](const FunctionInfo& f) {
+    std::vector<const FunctionInfo::Param*> u;
     for (const FunctionInfo::Param& p : f.params) {
-      if (p.uniform) uniforms.push_back(&p);
+      if (p.uniform) u.push_back(&p);
     }
-    if (args.size() > uniforms.size()) {
-      problem = "'" + function + "' has " + std::to_string(uniforms.size()) + " uniform parameter(s), but " +
+    return u;
+  };
+  for (size_t i = 0; i < it->second.size(); ++i) {
+    if (uniformsOf(it->second[i]).size() != args.size()) continue;
+    if (chosen) {
+      Fatal(at, "ambiguous call to '" + function + "': the overloads at line " + std::to_string(chosen->where.line) +
+                    " and line " + std::to_string(it->second[i].where.line) + " both take " +
+                    std::to_string(args.size()) + " uniform argument(s)");
+    }
+    chosen = &it->second[i];
+    overload = i;
+  }
+  for (size_t i = 0; i < it->second.size() && !chosen; ++i) {
+    std::vector<const FunctionInfo::Param*> u = uniformsOf(it->second[i]);
+    if (args.size() > u.size()) {
+      problem = "'" + function + "' has " + std::to_string(u.size()) + " uniform parameter(s), but " +
                 std::to_string(args.size()) + " argument(s) are given";
       continue;
     }
-    auto missing = std::find_if(uniforms.begin() + static_cast<std::ptrdiff_t>(args.size()), uniforms.end(),
+    auto missing = std::find_if(u.begin() + static_cast<std::ptrdiff_t>(args.size()), u.end(),
                                 [](const FunctionInfo::Param* p) { return p->defaultValue.empty(); });
-    if (missing != uniforms.end()) {
+    if (missing != u.end()) {
       problem = "no value for uniform parameter '" + (*missing)->name + "' of '" + function + "'";
       continue;
     }
-    chosen = &f;
+    chosen = &it->second[i];
     overload = i;
   }
   if (!chosen) Fatal(at, problem);
-  if (uniforms.empty()) return function;
+  uniforms = uniformsOf(*chosen);
+  // glslang finds no entry point by an overloaded name: overloads go through a wrapper too.
+  if (uniforms.empty() && it->second.size() == 1) return function;
   for (size_t i = args.size(); i < uniforms.size(); ++i) args.push_back(uniforms[i]->defaultValue);
 
   std::string key = function + "#" + std::to_string(overload) + "(" + Join(args, ",") + ")";
   auto found = variants_.find(key);
   if (found != variants_.end()) return found->second;
   std::string name = "fx_variant_" + std::to_string(variants_.size());
-  std::vector<std::string> params, call;
-  size_t next = 0;
+  std::vector<std::string> params, callArgs;
+  size_t next = 0, firstUniform = 0;
   for (const FunctionInfo::Param& p : chosen->params) {
+    if (p.uniform && next == 0) firstUniform = callArgs.size();
     if (p.uniform) {
-      call.push_back("(" + args[next++] + ")");
+      const std::string& a = args[next++];
+      bool oneToken = std::all_of(a.begin(), a.end(), [](char c) { return IsIdentifierChar(c) || c == '.'; });
+      callArgs.push_back(oneToken ? a : "(" + a + ")");
     } else {
       params.push_back(p.text);
-      call.push_back(p.name);
+      callArgs.push_back(p.name);
     }
   }
-  std::string code = "// " + name + ": " + function + "(" + Join(args, ", ") + ")\n";
-  if (!chosen->attributes.empty()) code += chosen->attributes + "\n";
+  // The call goes on the CompileShader's line, so that an error in an argument points there.
+  std::string code = "// " + name + ": " + function + "(" + Join(args, ", ") + ")\n" + LineDirective(at.where);
+  if (!chosen->attributes.empty()) code += chosen->attributes + " ";
   code += chosen->returnType + " " + name + "(" + Join(params, ", ") + ")";
   if (!chosen->semantic.empty()) code += " : " + chosen->semantic;
-  code += "\n{\n    " + std::string(chosen->returnType == "void" ? "" : "return ") + function + "(" +
-          Join(call, ", ") + ");\n}\n";
+  // The first uniform argument goes where CompileShader has it (right after `function(`).
+  std::string call = (chosen->returnType == "void" ? "" : "return ") + function + "(" + Join(callArgs, ", ") + "); }";
+  size_t firstArg = call.find('(') + 1;
+  if (!uniforms.empty()) firstArg = call.find(callArgs[firstUniform], firstArg);
+  size_t column = static_cast<size_t>(std::max(1, at.where.column)) - 1 + function.size() + 1;
+  code += " {\n" + LineDirective(at.where) + std::string(column > firstArg ? column - firstArg : 0, ' ') + call + "\n";
   variantCode_.push_back(std::move(code));
   variants_.emplace(std::move(key), name);
   return name;
@@ -151,7 +199,7 @@ std::string EffectParser::EntryPointFor(const Token& at, const std::string& func
 
 std::string EffectParser::VariantSource() const {
   if (variantCode_.empty()) return "";
-  return "\n#line 1 \"fx_variants\"\n" + Join(variantCode_, "");
+  return "\n" + Join(variantCode_, "");
 }
 
 }  // namespace fx

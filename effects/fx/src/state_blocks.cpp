@@ -349,6 +349,14 @@ std::optional<StateError> ApplyStateAssignment(RASTERIZER_DESC& desc, std::strin
 
 std::optional<StateError> ApplyStateAssignment(SAMPLER_DESC& desc, std::string_view member,
                                                std::optional<uint32_t> index, const StateValue& value) {
+  // D3D9 effects' sampler states, which fx_5_0 (FX11's state table) does not know.
+  for (std::string_view d3d9 : {"MinFilter", "MagFilter", "MipFilter", "MipMapLodBias", "MaxMipLevel", "SRGBTexture"}) {
+    if (EqualsIgnoreCase(d3d9, member)) {
+      return StateError{StateError::Part::Member,
+                        "'" + std::string(member) + "' is a D3D9 sampler state, not fx_5_0's: write Filter = " +
+                            "MIN_MAG_MIP_LINEAR (etc.), MipLODBias, MaxLOD as D3D11 names them"};
+    }
+  }
   return Apply(kSamplerMembers, "SamplerState", desc, member, index, value);
 }
 

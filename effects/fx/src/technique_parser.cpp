@@ -324,7 +324,13 @@ int EffectParser::ParseConstructGSWithSO(int depth) {
   s.where = keyword.where;
   for (size_t i = 0; i < decls.size(); ++i) s.soDeclarations[i] = decls[i];
   if (streamToken) {
-    s.rasterizedStream = EvaluateUInt(*streamToken, close, "rasterized stream", 0, UINT32_MAX);
+    // D3D11_SO_NO_RASTERIZED_STREAM is 0xFFFFFFFF; effects write it as -1 too.
+    ConstValue stream = Evaluate(*streamToken, close, "rasterized stream");
+    if (stream.components.size() == 1 && stream.components[0] == -1) {
+      s.rasterizedStream = rhi::SO_NO_RASTERIZED_STREAM;
+    } else {
+      s.rasterizedStream = EvaluateUInt(*streamToken, close, "rasterized stream", 0, UINT32_MAX);
+    }
     if (s.rasterizedStream >= rhi::SO_STREAM_COUNT && s.rasterizedStream != rhi::SO_NO_RASTERIZED_STREAM) {
       Error(t_[*streamToken], "the rasterized stream must be 0..3 or D3D11_SO_NO_RASTERIZED_STREAM");
     }

@@ -17,6 +17,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <regex>
 #include <spirv-tools/libspirv.hpp>
 #include <spirv-tools/optimizer.hpp>
@@ -37,13 +38,32 @@ constexpr char kPreambleName[] = "<defines>";
 
 bool IsIdentifierChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
 
-std::string LineOf(const std::string& text, int line) {
+// The texts of line `line` of `file` as glslang numbers it: in `text` (named
+// `textName`) after its #line directives, which the effect front end writes
+// where an #include starts and ends and before its generated entry points
+// (so one logical line may have several texts).
+std::vector<std::string> LogicalLines(const std::string& text, const std::string& textName, const std::string& file,
+                                      int line) {
+  std::vector<std::string> found;
+  static const std::regex kLineDirective(R"re(^\s*#\s*line\s+(\d{1,9})(?:\s+"((?:[^"\\]|\\.)*)")?\s*$)re");
   std::istringstream in(text);
-  std::string current;
-  for (int i = 1; std::getline(in, current); ++i) {
-    if (i == line) return current;
+  std::string current, name = textName;
+  int number = 1;
+  while (std::getline(in, current)) {
+    std::smatch m;
+    if (current.find('#') != std::string::npos && std::regex_match(current, m, kLineDirective)) {
+      number = std::stoi(m[1]);
+      if (m[2].matched) {
+        const std::string quoted = m[2];
+        name.clear();
+        for (size_t i = 0; i < quoted.size(); ++i) name += quoted[i] == '\\' && i + 1 < quoted.size() ? quoted[++i] : quoted[i];
+      }
+      continue;
+    }
+    if (number == line && name == file) found.push_back(current);
+    ++number;
   }
-  return {};
+  return found;
 }
 
 // 1-based column of the n-th (0-based) occurrence of token on the line, as a
@@ -67,13 +87,17 @@ int FindColumn(const std::string& lineText, const std::string& token, int occurr
 int RecoverColumn(const Diagnostic& d, const std::vector<Diagnostic>& earlier, const SourceFiles& files) {
   static const std::regex kQuoted(R"(^'([^']*)' :)");
   std::smatch quoted;
-  const auto file = files.find(d.file);
-  if (d.line <= 0 || file == files.end() || !std::regex_search(d.message, quoted, kQuoted)) return 0;
+  if (d.line <= 0 || !std::regex_search(d.message, quoted, kQuoted)) return 0;
   const std::string token = quoted[1];
   const auto same = std::count_if(earlier.begin(), earlier.end(), [&](const Diagnostic& e) {
     return e.file == d.file && e.line == d.line && e.message.starts_with(quoted[0].str());
   });
-  return FindColumn(LineOf(file->second, d.line), token, static_cast<int>(same));
+  for (const auto& [name, text] : files) {
+    for (const std::string& lineText : LogicalLines(text, name, d.file, d.line)) {
+      if (int column = FindColumn(lineText, token, static_cast<int>(same))) return column;
+    }
+  }
+  return 0;
 }
 
 // Unlocated entries (link errors) are attributed to mainFile.
@@ -82,9 +106,18 @@ void ParseInfoLog(const std::string& log, const std::string& mainFile, const Sou
   static const std::regex kEntry(R"(^(ERROR|WARNING|INTERNAL ERROR|UNIMPLEMENTED): (.*)$)");
   static const std::regex kLocated(R"(^(.*?):(\d{1,9}): (.*)$)");
   static const std::regex kSummary(R"(^\d+ compilation errors\.)");
+  // "file(12): error at column 40, HLSL parsing failed.": where the parse
+  // stopped, the column for that line's errors whose token was not found.
+  static const std::regex kParseStop(R"(^(.*)\((\d{1,9})\): error at column (\d{1,9}), HLSL parsing failed\.)");
   std::istringstream in(log);
   for (std::string line; std::getline(in, line);) {
-    std::smatch entry, located;
+    std::smatch entry, located, stop;
+    if (std::regex_search(line, stop, kParseStop)) {
+      for (Diagnostic& e : errors) {
+        if (e.column == 0 && e.file == stop[1].str() && e.line == std::stoi(stop[2])) e.column = std::stoi(stop[3]);
+      }
+      continue;
+    }
     if (!std::regex_match(line, entry, kEntry)) continue;
     const std::string body = entry[2];
     if (std::regex_search(body, kSummary)) continue;  // "1 compilation errors.  No code generated."
@@ -94,6 +127,11 @@ void ParseInfoLog(const std::string& log, const std::string& mainFile, const Sou
     while (!d.message.empty() && std::isspace(static_cast<unsigned char>(d.message.back()))) d.message.pop_back();
     auto& sink = entry[1] == "WARNING" ? warnings : errors;
     d.column = RecoverColumn(d, sink, files);
+    // "0:0: 'constructor' : can't convert" follows the error of the expression it is about.
+    if (d.file == "0" && d.line == 0) {
+      d.file = sink.empty() ? mainFile : sink.back().file;
+      if (!sink.empty()) d.line = sink.back().line, d.column = sink.back().column;
+    }
     sink.push_back(std::move(d));
   }
 }

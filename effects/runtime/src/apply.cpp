@@ -3,6 +3,7 @@
 #include <array>
 
 #include "effect_impl.h"
+#include "variables.h"
 
 namespace fx::detail {
 namespace {
@@ -167,6 +168,32 @@ HRESULT PassImpl::GetDesc(PASS_DESC* pDesc) {
       pDesc->SampleMask = a.sampleMask;
     }
     if (a.kind == PassAction::Kind::DepthStencil) pDesc->StencilRef = a.stencilRef;
+  }
+  return rhi::S_OK;
+}
+
+EffectVariable* PassImpl::GetAnnotationByIndex(UINT Index) {
+  return effect_ ? effect_->Annotation(ast_->annotations, Index) : VariableImpl::Invalid();
+}
+
+EffectVariable* PassImpl::GetAnnotationByName(LPCSTR Name) {
+  return effect_ ? effect_->Annotation(ast_->annotations, Name) : VariableImpl::Invalid();
+}
+
+// FX11's GetShaderDescHelper: the variable (and element) the pass's last
+// assignment to `stage` names; an inline shader or NULL gets an anonymous one.
+HRESULT PassImpl::ShaderDesc(ShaderStage stage, PASS_SHADER_DESC* pDesc) {
+  if (!effect_ || !pDesc) return rhi::E_FAIL;
+  const ShaderAssignment* last = nullptr;
+  for (const PassAssignment& a : ast_->assignments) {
+    if (const auto* s = std::get_if<ShaderAssignment>(&a.value); s && s->stage == stage) last = s;
+  }
+  *pDesc = {};
+  if (last && !last->variable.empty()) {
+    pDesc->pShaderVariable = effect_->GetVariableByName(last->variable.c_str())->AsShader();
+    pDesc->ShaderIndex = last->element;
+  } else {
+    pDesc->pShaderVariable = effect_->AnonymousShader(stage, last ? last->shader : -1);
   }
   return rhi::S_OK;
 }

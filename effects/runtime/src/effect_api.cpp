@@ -2,6 +2,7 @@
 #include <strings.h>
 
 #include <exception>
+#include <set>
 
 #include "effect_impl.h"
 #include "fx/effect_parser.h"
@@ -82,6 +83,11 @@ HRESULT EffectImpl::GetDesc(EFFECT_DESC* pDesc) {
   pDesc->ConstantBuffers = static_cast<UINT>(cbuffers.size());
   pDesc->GlobalVariables = static_cast<UINT>(globals.size());
   pDesc->Techniques = static_cast<UINT>(techniques.size());
+  std::set<std::string> groups;
+  for (const Technique& t : ast.techniques) {
+    if (!t.group.empty()) groups.insert(t.group);
+  }
+  pDesc->Groups = static_cast<UINT>(groups.size());
   return rhi::S_OK;
 }
 
@@ -132,6 +138,14 @@ HRESULT TechniqueImpl::GetDesc(TECHNIQUE_DESC* pDesc) {
   pDesc->Passes = static_cast<UINT>(passes_.size());
   pDesc->Annotations = static_cast<UINT>(ast_->annotations.size());
   return rhi::S_OK;
+}
+
+EffectVariable* TechniqueImpl::GetAnnotationByIndex(UINT Index) {
+  return effect_ ? effect_->Annotation(ast_->annotations, Index) : VariableImpl::Invalid();
+}
+
+EffectVariable* TechniqueImpl::GetAnnotationByName(LPCSTR Name) {
+  return effect_ ? effect_->Annotation(ast_->annotations, Name) : VariableImpl::Invalid();
 }
 
 EffectPass* TechniqueImpl::GetPassByIndex(UINT Index) {

@@ -84,7 +84,16 @@ class PassImpl final : public EffectPass {
  public:
   BOOL IsValid() override { return effect_ != nullptr; }
   HRESULT GetDesc(PASS_DESC* pDesc) override;
+  HRESULT GetVertexShaderDesc(PASS_SHADER_DESC* pDesc) override { return ShaderDesc(ShaderStage::Vertex, pDesc); }
+  HRESULT GetGeometryShaderDesc(PASS_SHADER_DESC* pDesc) override { return ShaderDesc(ShaderStage::Geometry, pDesc); }
+  HRESULT GetPixelShaderDesc(PASS_SHADER_DESC* pDesc) override { return ShaderDesc(ShaderStage::Pixel, pDesc); }
+  HRESULT GetHullShaderDesc(PASS_SHADER_DESC* pDesc) override { return ShaderDesc(ShaderStage::Hull, pDesc); }
+  HRESULT GetDomainShaderDesc(PASS_SHADER_DESC* pDesc) override { return ShaderDesc(ShaderStage::Domain, pDesc); }
+  HRESULT GetComputeShaderDesc(PASS_SHADER_DESC* pDesc) override { return ShaderDesc(ShaderStage::Compute, pDesc); }
+  EffectVariable* GetAnnotationByIndex(UINT Index) override;
+  EffectVariable* GetAnnotationByName(LPCSTR Name) override;
   HRESULT Apply(UINT Flags, rhi::DeviceContext* pContext) override;
+  HRESULT ShaderDesc(ShaderStage stage, PASS_SHADER_DESC* pDesc);
 
   EffectImpl* effect_ = nullptr;
   const Pass* ast_ = nullptr;
@@ -96,6 +105,8 @@ class TechniqueImpl final : public EffectTechnique {
  public:
   BOOL IsValid() override { return effect_ != nullptr; }
   HRESULT GetDesc(TECHNIQUE_DESC* pDesc) override;
+  EffectVariable* GetAnnotationByIndex(UINT Index) override;
+  EffectVariable* GetAnnotationByName(LPCSTR Name) override;
   EffectPass* GetPassByIndex(UINT Index) override;
   EffectPass* GetPassByName(LPCSTR Name) override;
 
@@ -121,6 +132,12 @@ class EffectImpl final : public Effect {
   void Upload(rhi::DeviceContext* context, const ShaderState& shader);
   // A variable view owned by the effect (elements and members are made on demand).
   VariableImpl* Own(VariableImpl&& view);
+  // Annotation `index` of `list` (or the one called `name`) as a read-only variable.
+  EffectVariable* Annotation(const std::vector<fx::Annotation>& list, UINT index);
+  EffectVariable* Annotation(const std::vector<fx::Annotation>& list, LPCSTR name);
+  // The anonymous shader variable of an inline shader (`shader` >= 0) or a
+  // stage's NULL shader (`shader` -1).
+  VariableImpl* AnonymousShader(ShaderStage stage, int shader);
 
   ComPtr<rhi::Device> device;  // a reference: the effect still has to go before the device (its RHI children)
   EffectAst ast;
@@ -139,6 +156,8 @@ class EffectImpl final : public Effect {
   std::vector<VariableImpl*> globals;       // GetVariableByIndex order
   std::vector<VariableImpl*> cbufferViews;  // per cbuffers
   std::map<std::tuple<const VariableImpl*, int, uint32_t>, VariableImpl*> subViews;  // (parent, member or -1, element)
+  std::map<const fx::Annotation*, VariableImpl*> annotationViews;
+  std::map<std::pair<ShaderStage, int>, VariableImpl*> anonymousShaders;
 
  private:
   ~EffectImpl() override;

@@ -63,6 +63,12 @@ const char* ResourceTypeName(ResourceKind k) {
   return kNames[static_cast<int>(k)];
 }
 
+const char* ShaderTypeName(ShaderStage stage) {
+  static const char* const kNames[] = {"VertexShader", "HullShader",  "DomainShader",
+                                       "GeometryShader", "PixelShader", "ComputeShader"};
+  return kNames[static_cast<int>(stage)];
+}
+
 uint32_t Product(const std::vector<uint32_t>& dims, size_t from) {
   uint32_t n = 1;
   for (size_t i = from; i < dims.size(); ++i) n *= dims[i];
@@ -86,7 +92,11 @@ uint32_t VariableImpl::ElementCount() const {
 
 uint32_t VariableImpl::ElementStride() const { return type ? Round16(PackedElementSize(*type)) : 0; }
 
-uint8_t* VariableImpl::Bytes() { return effect->cbuffers[index].data.data() + offset; }
+uint8_t* VariableImpl::Bytes() {
+  // An annotation's bytes are never written: every setter refuses annotations.
+  if (annotation) return const_cast<uint8_t*>(annotation->bytes.data()) + offset;
+  return effect->cbuffers[index].data.data() + offset;
+}
 
 void VariableImpl::Touch() { ++effect->cbuffers[index].version; }
 
@@ -97,7 +107,16 @@ HRESULT VariableImpl::GetDesc(EFFECT_VARIABLE_DESC* pDesc) {
   pDesc->Semantic = semantic.empty() ? nullptr : semantic.c_str();
   pDesc->BufferOffset = kind == Kind::Numeric ? offset : 0;
   pDesc->ExplicitBindPoint = explicitBindPoint;
+  pDesc->Annotations = annotations ? static_cast<UINT>(annotations->size()) : 0;
   return S_OK;
+}
+
+EffectVariable* VariableImpl::GetAnnotationByIndex(UINT Index) {
+  return IsValid() && annotations ? effect->Annotation(*annotations, Index) : Invalid();
+}
+
+EffectVariable* VariableImpl::GetAnnotationByName(LPCSTR Name) {
+  return IsValid() && annotations ? effect->Annotation(*annotations, Name) : Invalid();
 }
 
 HRESULT VariableImpl::GetTypeDesc(EFFECT_TYPE_DESC* pDesc) {
@@ -197,6 +216,7 @@ EffectMatrixVariable* VariableImpl::AsMatrix() { return IsNumeric(VariableType::
 // Numeric values
 
 HRESULT VariableImpl::SetRawValue(const void* pData, UINT ByteOffset, UINT ByteCount) {
+  if (annotation) return E_FAIL;  // FX11: annotations are read-only
   if (kind != Kind::Numeric || !pData || uint64_t(ByteOffset) + ByteCount > type->size) return E_INVALIDARG;
   std::memcpy(Bytes() + ByteOffset, pData, ByteCount);
   Touch();
@@ -211,6 +231,7 @@ HRESULT VariableImpl::GetRawValue(void* pData, UINT ByteOffset, UINT ByteCount) 
 
 template <class T>
 HRESULT VariableImpl::SetComponents(const T* values, UINT first, UINT elements, UINT components, UINT srcStride) {
+  if (annotation) return E_FAIL;
   if (kind != Kind::Numeric || !values || uint64_t(first) + elements > ElementCount() ||
       type->cls == VariableType::Class::Struct || type->cls == VariableType::Class::Matrix)
     return E_INVALIDARG;
@@ -259,6 +280,7 @@ HRESULT VariableImpl::SetIntVectorArray(const int* p, UINT o, UINT n) { return S
 // D3DX matrices are row-major 4x4 (m[row * 4 + col]); the variable stores
 // column c of a column_major matrix in register c, row r of a row_major one in register r.
 HRESULT VariableImpl::MatrixAccess(float* data, UINT Offset, UINT Count, bool write, bool transpose) {
+  if (annotation && write) return E_FAIL;
   if (!IsNumeric(VariableType::Class::Matrix) || !data || uint64_t(Offset) + Count > ElementCount())
     return E_INVALIDARG;
   for (UINT e = 0; e < Count; ++e) {
@@ -292,6 +314,10 @@ HRESULT VariableImpl::GetMatrixTranspose(float* p) { return MatrixAccess(p, 0, 1
 
 HRESULT VariableImpl::GetString(LPCSTR* ppString) {
   if (kind != Kind::String || !ppString) return E_FAIL;
+  if (annotation) {
+    *ppString = annotation->stringValue.c_str();
+    return S_OK;
+  }
   const auto& values = effect->ast.strings[index].values;
   *ppString = firstElement < values.size() ? values[firstElement].c_str() : "";
   return S_OK;
@@ -402,12 +428,17 @@ HRESULT VariableImpl::GetConstantBuffer(rhi::Buffer** pp) {
   return S_OK;
 }
 
+int VariableImpl::ShaderAt(UINT Index) const {
+  if (index < 0) return Index == 0 ? anonymousShader : -2;
+  const auto& shaders = effect->ast.shaderVariables[index].shaders;
+  return firstElement + Index < shaders.size() ? shaders[firstElement + Index] : -2;
+}
+
 #define FXRT_SHADER_GETTER(Type, Member)                                                   \
   HRESULT VariableImpl::Get##Type(UINT Index, rhi::Type** pp) {                            \
     if (kind != Kind::Shader || !pp) return E_FAIL;                                        \
-    const auto& shaders = effect->ast.shaderVariables[index].shaders;                     \
-    if (firstElement + Index >= shaders.size()) return E_INVALIDARG;                      \
-    int s = shaders[firstElement + Index];                                                 \
+    int s = ShaderAt(Index);                                                               \
+    if (s < -1) return E_INVALIDARG;                                                       \
     AddRefOut(s < 0 ? nullptr : effect->shaders[s].Member.Get(), pp);                      \
     return S_OK;                                                                           \
   }
@@ -416,6 +447,27 @@ FXRT_SHADER_GETTER(GeometryShader, gs)
 FXRT_SHADER_GETTER(PixelShader, ps)
 FXRT_SHADER_GETTER(ComputeShader, cs)
 #undef FXRT_SHADER_GETTER
+
+HRESULT VariableImpl::GetShaderDesc(UINT ShaderIndex, EFFECT_SHADER_DESC* pDesc) {
+  if (kind != Kind::Shader || !pDesc) return E_FAIL;
+  int s = ShaderAt(ShaderIndex);
+  if (s < -1) return E_INVALIDARG;
+  *pDesc = {};
+  pDesc->IsInline = index < 0 ? rhi::TRUE : rhi::FALSE;
+  if (s < 0) return S_OK;  // NULL
+  const ShaderState& shader = effect->shaders[s];
+  pDesc->pBytecode = shader.code->spirv.data();
+  pDesc->BytecodeLength = static_cast<UINT>(shader.code->spirv.size() * 4);
+  pDesc->pInputSignature = pDesc->pBytecode;
+  if (shader.ast->hasStreamOutput) {
+    for (size_t k = 0; k < rhi::SO_STREAM_COUNT; ++k) {
+      const std::string& decl = shader.ast->soDeclarations[k];
+      pDesc->SODecls[k] = decl.empty() ? nullptr : decl.c_str();
+    }
+    pDesc->RasterizedStream = shader.ast->rasterizedStream;
+  }
+  return S_OK;
+}
 
 // --------------------------------------------------------------------------
 // Building the variables of an effect
@@ -430,11 +482,55 @@ VariableImpl ObjectView(EffectImpl& effect, VariableImpl::Kind kind, const Var& 
   view.name = v.name;
   view.index = index;
   if constexpr (requires { v.arrayDims; }) view.arrayDims = v.arrayDims;
+  view.annotations = &v.annotations;
   view.typeName = std::move(typeName);
   return view;
 }
 
+VariableImpl AnnotationView(EffectImpl& effect, const fx::Annotation& a) {
+  VariableImpl view;
+  view.effect = &effect;
+  view.name = a.name;
+  view.annotation = &a;
+  if (a.type == "string") {
+    view.kind = VariableImpl::Kind::String;
+    view.typeName = "string";
+  } else {
+    view.kind = VariableImpl::Kind::Numeric;
+    view.type = &a.valueType;
+  }
+  return view;
+}
+
 }  // namespace
+
+EffectVariable* EffectImpl::Annotation(const std::vector<fx::Annotation>& list, UINT index) {
+  if (index >= list.size()) return VariableImpl::Invalid();
+  VariableImpl*& view = annotationViews[&list[index]];
+  if (!view) view = Own(AnnotationView(*this, list[index]));
+  return view;
+}
+
+EffectVariable* EffectImpl::Annotation(const std::vector<fx::Annotation>& list, LPCSTR name) {
+  for (size_t i = 0; name && i < list.size(); ++i) {
+    if (list[i].name == name) return Annotation(list, static_cast<UINT>(i));
+  }
+  return VariableImpl::Invalid();
+}
+
+VariableImpl* EffectImpl::AnonymousShader(ShaderStage stage, int shader) {
+  VariableImpl*& view = anonymousShaders[{stage, shader}];
+  if (!view) {
+    VariableImpl v;
+    v.kind = VariableImpl::Kind::Shader;
+    v.effect = this;
+    v.name = "$Anonymous";
+    v.typeName = ShaderTypeName(stage);
+    v.anonymousShader = shader;
+    view = Own(std::move(v));
+  }
+  return view;
+}
 
 void BuildVariables(EffectImpl& effect) {
   const EffectAst& ast = effect.ast;
@@ -457,13 +553,16 @@ void BuildVariables(EffectImpl& effect) {
       view.index = static_cast<int>(c);
       view.type = &v.type;
       view.offset = v.offset;
+      view.annotations = &v.annotations;
       add(std::move(view));
     }
   }
   for (size_t i = 0; i < ast.resources.size(); ++i) {
     const ResourceVariable& r = ast.resources[i];
     auto kind = IsUnorderedAccess(r.kind) ? VariableImpl::Kind::UnorderedAccess : VariableImpl::Kind::Resource;
-    VariableImpl view = ObjectView(effect, kind, r, static_cast<int>(i), ResourceTypeName(r.kind));
+    std::string typeName = ResourceTypeName(r.kind);
+    if (!r.templateArgs.empty()) typeName += "<" + r.templateArgs + ">";
+    VariableImpl view = ObjectView(effect, kind, r, static_cast<int>(i), std::move(typeName));
     if (r.reg) view.explicitBindPoint = r.reg->index;
     add(std::move(view));
   }
@@ -487,11 +586,9 @@ void BuildVariables(EffectImpl& effect) {
     if (ast.strings[i].values.size() > 1) view.arrayDims = {static_cast<uint32_t>(ast.strings[i].values.size())};
     add(std::move(view));
   }
-  static const char* const kShaderTypes[] = {"VertexShader", "HullShader", "DomainShader",
-                                             "GeometryShader", "PixelShader", "ComputeShader"};
   for (size_t i = 0; i < ast.shaderVariables.size(); ++i)
     add(ObjectView(effect, VariableImpl::Kind::Shader, ast.shaderVariables[i], static_cast<int>(i),
-                   kShaderTypes[static_cast<int>(ast.shaderVariables[i].stage)]));
+                   ShaderTypeName(ast.shaderVariables[i].stage)));
 }
 
 }  // namespace fx::detail

@@ -43,11 +43,18 @@ class VariableImpl final : public EffectScalarVariable,
   std::vector<uint32_t> arrayDims;
   uint32_t firstElement = 0;
   uint32_t explicitBindPoint = ~0u;
+  const std::vector<fx::Annotation>* annotations = nullptr;  // the variable's own
+  const fx::Annotation* annotation = nullptr;  // set when this view IS an annotation (read-only)
+  // Shader views without a variable (index -1): the inline shader they stand
+  // for, -1 for a NULL shader.
+  int anonymousShader = -1;
 
   // EffectVariable
   BOOL IsValid() override { return kind != Kind::Invalid; }
   HRESULT GetDesc(EFFECT_VARIABLE_DESC* pDesc) override;
   HRESULT GetTypeDesc(EFFECT_TYPE_DESC* pDesc) override;
+  EffectVariable* GetAnnotationByIndex(UINT Index) override;
+  EffectVariable* GetAnnotationByName(LPCSTR Name) override;
   EffectVariable* GetMemberByIndex(UINT Index) override;
   EffectVariable* GetMemberByName(LPCSTR Name) override;
   EffectVariable* GetElement(UINT Index) override;
@@ -134,12 +141,14 @@ class VariableImpl final : public EffectScalarVariable,
   HRESULT GetGeometryShader(UINT Index, rhi::GeometryShader** ppShader) override;
   HRESULT GetPixelShader(UINT Index, rhi::PixelShader** ppShader) override;
   HRESULT GetComputeShader(UINT Index, rhi::ComputeShader** ppShader) override;
+  HRESULT GetShaderDesc(UINT ShaderIndex, EFFECT_SHADER_DESC* pDesc) override;
 
  private:
   VariableImpl* Is(Kind k) { return kind == k ? this : Invalid(); }
   bool IsNumeric(VariableType::Class cls) const {
     return kind == Kind::Numeric && type && type->cls == cls;
   }
+  int ShaderAt(UINT index) const;  // Shader: the EffectImpl::shaders index of element `index`, -1 for NULL
   uint32_t ElementCount() const;  // numeric or object elements this view covers (1 when not an array)
   uint32_t ElementStride() const;  // numeric: bytes between elements in FX11 packing
   uint8_t* Bytes();                // numeric: the view's first byte in the FX11 shadow

@@ -53,6 +53,16 @@ struct QuadStack {
 constexpr float kCentreHalfAngleDegrees = 4.0f;
 std::vector<TriangleMesh> CameraFacingQuads(const QuadStack& stack);
 
+// Document 003's scenes (scenes.cpp) are made of these flat-faced meshes.
+// A flat quad with corners a, b, c, d in order around it, its front side facing `front`.
+TriangleMesh FlatQuad(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const glm::vec3& d,
+                      const glm::vec3& front, const MeshMaterial& material);
+// The axis-aligned box [lo, hi], fronts facing out; openTop leaves its +y face out (a cup).
+TriangleMesh Box(const glm::vec3& lo, const glm::vec3& hi, const MeshMaterial& material, bool openTop = false);
+// A magic circle in the horizontal plane through `centre`, facing up: two rings (outer
+// radius `radius`, widths radius / 12) and a hexagram of bands between them.
+TriangleMesh MagicCircle(const glm::vec3& centre, float radius, const MeshMaterial& material);
+
 struct TranslucencySettings;
 // The complexity scene's stack (scenes.cpp): settings.depthComplexity quads from
 // settings.seed, facing the scripted camera of frame 0, 1.5 before to 1.5 behind its target.

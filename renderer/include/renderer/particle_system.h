@@ -31,6 +31,9 @@ struct ParticleSettings {
 struct Camera {
   glm::mat4 viewProj{1.0f};  // column-vector convention: clip = viewProj * world
   glm::vec3 eye{0, 0, 0};
+  // The projection's near and far planes (view depth, scene units), which viewProj's
+  // perspectiveLH_ZO was made with.
+  float nearPlane = 0.1f, farPlane = 40.0f;
 };
 
 class ParticleSystem {

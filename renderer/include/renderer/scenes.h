@@ -37,6 +37,9 @@ struct SceneInfo {
   // Adds the scene's translucent objects (settings.extraShards adds shards to any scene).
   bool (*build)(rhi::Device* device, const TranslucencySettings& settings,
                 std::vector<std::unique_ptr<TranslucentObject>>* objects, std::string* error);
+  // The camera's near and far planes (view depth, scene units); document 003's scenes
+  // use the thesis's 0.25 and 5000.
+  float nearPlane = 0.1f, farPlane = 40.0f;
 };
 
 // The registry, in the order listings show them.

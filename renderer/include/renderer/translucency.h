@@ -32,6 +32,10 @@
 
 namespace renderer {
 
+// The colours the frame is cleared to before the opaque objects.
+inline constexpr float kSkyColour[4] = {0.55f, 0.65f, 0.8f, 1.0f};
+inline constexpr float kNeutralColour[4] = {0.6f, 0.6f, 0.6f, 1.0f};
+
 struct TranslucencySettings {
   std::string scene = "smoke";  // a name of Scenes()
   uint32_t width = 640, height = 360;
@@ -55,7 +59,11 @@ struct TranslucencySettings {
   int showLayer = -1;
   // The fragment-buffer methods' storage (prefix-sum's sizing, linked-list's pool).
   oit::FragmentStorage fragmentStorage;
-  // Background.
+  // Document 003's m of moment-transparency-mindepth (per scene unit of view depth).
+  float minDepthSlope = oit::kDefaultMinDepthSlope;
+  // The camera's near and far planes; 0: the scene's (SceneInfo::nearPlane, farPlane).
+  float nearPlane = 0, farPlane = 0;
+  // Background: the frame's clear colour (kSkyColour, or kNeutralColour) behind the backdrop.
   bool neutralBackground = false;  // a plain grey wall instead of coloured stripes
   bool timestamps = false;         // per-pass TIMESTAMP queries and the first method pass's statistics (LastTimes)
   bool countParticles = false;     // SO_STATISTICS around every update (see particleCount)
@@ -116,11 +124,13 @@ class Translucency {
   struct Impl;
   struct MethodState;
   class FrameGeometry;
+  class FrameOpaque;
   Translucency() = default;
   bool Initialize(rhi::Device* device, rhi::DeviceContext* context, const TranslucencySettings& settings);
   MethodState* Prepare(const oit::MethodInfo& method);
   bool Render(const oit::MethodInfo& method, bool advance);
-  void OpaquePass();
+  bool PrepareVisibilityBuffer();
+  void OpaquePass(bool visibilityBuffer);
 
   TranslucencySettings settings_;
   const SceneInfo* scene_ = nullptr;

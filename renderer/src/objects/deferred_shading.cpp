@@ -18,9 +18,9 @@ void SetInverseViewProj(fx::Effect* effect, const Camera& camera) {
   effect->GetVariableByName("InvViewProj")->AsMatrix()->SetMatrixTranspose(&inverse[0][0]);  // GLM: columns
 }
 
-bool DrawFullscreenPass(rhi::DeviceContext* context, fx::Effect* effect, const oit::FrameDesc& frame, const char* pass,
-                        std::string* error) {
-  fx::EffectPass* p = FindPass(effect, nullptr, pass, error);
+bool DrawFullscreenPass(rhi::DeviceContext* context, fx::Effect* effect, const oit::FrameDesc& frame,
+                        const char* technique, const char* pass, std::string* error) {
+  fx::EffectPass* p = FindPass(effect, technique, pass, error);
   if (!p) return false;
   const float size[4] = {float(frame.width), float(frame.height), 0, 0};
   effect->GetVariableByName("FrameSize")->AsVector()->SetFloatVector(size);

@@ -55,7 +55,7 @@ bool EffectObject::DrawFullscreen(DeviceContext* context, const oit::MethodInfo&
   LoadedEffect& e = effects_.at(method.name);
   SetCamera(e, camera);
   SetFrameVariables(*e.effect.Get());
-  return DrawFullscreenPass(context, e.effect.Get(), frame, pass, error);
+  return DrawFullscreenPass(context, e.effect.Get(), frame, nullptr, pass, error);
 }
 
 bool EffectObject::CreateBuffer(UINT size, USAGE usage, UINT bind, const void* data, ComPtr<Buffer>* out) const {

@@ -109,7 +109,77 @@ TriangleMesh FacingSquare(const glm::vec3& centre, const glm::vec3& right, const
   return quad;
 }
 
+// The triangle a, b, c wound so that its front (clockwise on screen in a left-handed
+// world: cross(b - a, c - a) towards the eye) faces `front`.
+void AddFacingTriangle(TriangleMesh* mesh, const glm::vec3& a, glm::vec3 b, glm::vec3 c, const glm::vec3& front) {
+  if (glm::dot(glm::cross(b - a, c - a), front) < 0) std::swap(b, c);
+  const glm::vec3 normal = glm::normalize(front);
+  const uint32_t base = uint32_t(mesh->positions.size());
+  mesh->positions.insert(mesh->positions.end(), {a, b, c});
+  mesh->normals.insert(mesh->normals.end(), {normal, normal, normal});
+  mesh->indices.insert(mesh->indices.end(), {base, base + 1, base + 2});
+}
+
+void AddFacingQuad(TriangleMesh* mesh, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const glm::vec3& d,
+                   const glm::vec3& front) {
+  AddFacingTriangle(mesh, a, b, c, front);
+  AddFacingTriangle(mesh, a, c, d, front);
+}
+
 }  // namespace
+
+TriangleMesh FlatQuad(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const glm::vec3& d,
+                      const glm::vec3& front, const MeshMaterial& material) {
+  TriangleMesh mesh;
+  mesh.material = material;
+  AddFacingQuad(&mesh, a, b, c, d, front);
+  return mesh;
+}
+
+TriangleMesh Box(const glm::vec3& lo, const glm::vec3& hi, const MeshMaterial& material, bool openTop) {
+  TriangleMesh mesh;
+  mesh.material = material;
+  const auto corner = [&](int x, int y, int z) { return glm::vec3(x ? hi.x : lo.x, y ? hi.y : lo.y, z ? hi.z : lo.z); };
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      if (openTop && axis == 1 && side == 1) continue;
+      glm::vec3 out(0);
+      out[axis] = side ? 1.0f : -1.0f;
+      // The face's four corners in order around it: the other two axes as (0,0) (1,0) (1,1) (0,1).
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      glm::vec3 quad[4];
+      const int steps[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+      for (int k = 0; k < 4; ++k) {
+        int bits[3];
+        bits[axis] = side, bits[u] = steps[k][0], bits[v] = steps[k][1];
+        quad[k] = corner(bits[0], bits[1], bits[2]);
+      }
+      AddFacingQuad(&mesh, quad[0], quad[1], quad[2], quad[3], out);
+    }
+  return mesh;
+}
+
+TriangleMesh MagicCircle(const glm::vec3& centre, const float radius, const MeshMaterial& material) {
+  TriangleMesh mesh;
+  mesh.material = material;
+  const glm::vec3 up(0, 1, 0);
+  const auto at = [&](float r, float angle) { return centre + r * glm::vec3(std::cos(angle), 0, std::sin(angle)); };
+  const float width = radius / 12.0f, inner = 0.62f * radius;
+  constexpr int kSegments = 48;
+  constexpr float kTau = 6.2831853f;
+  for (float r : {radius, inner})
+    for (int i = 0; i < kSegments; ++i) {
+      const float a0 = kTau * i / kSegments, a1 = kTau * (i + 1) / kSegments;
+      AddFacingQuad(&mesh, at(r - width, a0), at(r, a0), at(r, a1), at(r - width, a1), up);
+    }
+  // The hexagram: the six sides of two triangles inscribed in the inner ring.
+  for (int i = 0; i < 6; ++i) {
+    const glm::vec3 p = at(inner - width, kTau * i / 6), q = at(inner - width, kTau * (i + 2) / 6);
+    const glm::vec3 across = 0.5f * width * glm::normalize(glm::cross(up, q - p));
+    AddFacingQuad(&mesh, p - across, q - across, q + across, p + across, up);
+  }
+  return mesh;
+}
 
 TriangleMesh UtahTeapot(int segments, const MeshMaterial& material) {
   TriangleMesh mesh;

@@ -48,8 +48,9 @@ bool CreateRawView(rhi::Device* device, rhi::Buffer* buffer, uint32_t bytes, rhi
 // of theirs can unproject);
 void SetInverseViewProj(fx::Effect* effect, const Camera& camera);
 // and the resolve's full-screen triangle (Draw(3, 0), no vertex buffer) with `pass` of
-// `effect`, after setting deferred.hlsli's FrameSize from the frame.
+// `technique` (null: the first) of `effect`, after setting deferred.hlsli's FrameSize
+// from the frame.
 bool DrawFullscreenPass(rhi::DeviceContext* context, fx::Effect* effect, const oit::FrameDesc& frame,
-                        const char* pass, std::string* error);
+                        const char* technique, const char* pass, std::string* error);
 
 }  // namespace renderer

@@ -4,8 +4,11 @@
 //                    geometry (its depth buffer is a copy of the opaque depth, LESS)
 //   Peel (x N-1)     layer k: the same over a fresh copy of the opaque depth, of the
 //                    fragments strictly behind layer k-1 (its depth, read as a texture)
-//   Composite (x N)  the layers over the frame, N-1 first (ShowLayer instead: one layer)
-// Every layer keeps its colour and transmission in a slice of two texture arrays;
+//   LoadFrame        the opaque frame into a float32 composite
+//   Composite (x N)  the layers over the composite, N-1 first
+//   StoreFrame       the composite into the frame, rounded once
+//                    (ShowLayer instead of the last three: one layer alone)
+// Every layer keeps its colour and opacity in a slice of two texture arrays;
 // the two depth buffers ping-pong (one is written while the other is read).
 //
 // Until a layer is empty: an occlusion query around each layer's Composite counts
@@ -30,7 +33,9 @@ class DepthPeelingMethod final : public Method {
   explicit DepthPeelingMethod(uint32_t layers) : maxLayers_(layers), queries_(layers) {
     passes_.assign(layers, "Peel");
     passes_.front() = "PeelNearest";
+    passes_.push_back("LoadFrame");
     passes_.insert(passes_.end(), layers, "Composite");
+    passes_.push_back("StoreFrame");
   }
 
   bool Initialize(const MethodInfo& info, const MethodSetup& setup, std::string* error) {
@@ -40,15 +45,16 @@ class DepthPeelingMethod final : public Method {
       if (rhi::FAILED(device->CreateQuery(&occlusion, q.GetAddressOf())))
         return *error = std::string(info.name) + ": creating the occlusion queries failed", false;
     if (!colour_.CreateArray(device, setup.frame, rhi::DXGI_FORMAT_R16G16B16A16_FLOAT, maxLayers_) ||
-        !transmission_.CreateArray(device, setup.frame, rhi::DXGI_FORMAT_R16G16B16A16_FLOAT, maxLayers_) ||
+        !opacity_.CreateArray(device, setup.frame, rhi::DXGI_FORMAT_R16G16B16A16_FLOAT, maxLayers_) ||
         !depth_[0].Create(device, setup.frame) || !depth_[1].Create(device, setup.frame))
       return *error = std::string(info.name) + ": creating the layers failed", false;
     effect_ = LoadMethodEffect(device, info, nullptr, {}, error);
-    if (!effect_ || !(composite_ = FindPass(effect_.Get(), nullptr, "Composite", error)) ||
+    if (!effect_ || !composite_.Create(device, setup.frame, effect_.Get(), error) ||
+        !(compositeLayer_ = FindPass(effect_.Get(), nullptr, "Composite", error)) ||
         !(showLayer_ = FindPass(effect_.Get(), nullptr, "ShowLayer", error)))
       return false;
     effect_->GetVariableByName("ColourLayers")->AsShaderResource()->SetResource(colour_.srv.Get());
-    effect_->GetVariableByName("TransmissionLayers")->AsShaderResource()->SetResource(transmission_.srv.Get());
+    effect_->GetVariableByName("OpacityLayers")->AsShaderResource()->SetResource(opacity_.srv.Get());
     layer_ = effect_->GetVariableByName("Layer")->AsScalar();
     return true;
   }
@@ -63,16 +69,20 @@ class DepthPeelingMethod final : public Method {
     }
     // The layers known to be empty: skipped, in the peeling and in the compositing.
     for (uint32_t k = layers; k < maxLayers_; ++k) a.marks->BeginPass(pass++);
+    a.marks->BeginPass(pass++);
+    composite_.Load(a.context, a.targets.frameView);
     for (uint32_t k = layers; k < maxLayers_; ++k) a.marks->BeginPass(pass++);
     for (uint32_t k = layers; k-- > 0;) {
       a.marks->BeginPass(pass++);
       Composite(a, k);
     }
+    a.marks->BeginPass(pass++);
+    composite_.Store(a.context, a.targets.frame);
     composited_ = layers;
   }
 
   uint64_t MemoryBytes() const override {
-    return colour_.bytes + transmission_.bytes + depth_[0].bytes + depth_[1].bytes;
+    return colour_.bytes + opacity_.bytes + composite_.bytes() + depth_[0].bytes + depth_[1].bytes;
   }
   const std::vector<std::string>& PassNames() const override { return passes_; }
 
@@ -113,20 +123,20 @@ class DepthPeelingMethod final : public Method {
     a.targets.depth->GetResource(opaqueDepth.GetAddressOf());
     const DepthTexture& depth = depth_[k % 2];
     ctx->CopyResource(depth.texture.Get(), opaqueDepth.Get());
-    const float transparent[4] = {0, 0, 0, 0}, noFragment[4] = {1, 1, 1, 0};
+    const float transparent[4] = {0, 0, 0, 0};
     ctx->ClearRenderTargetView(colour_.rtv(k), transparent);
-    ctx->ClearRenderTargetView(transmission_.rtv(k), noFragment);
-    rhi::RenderTargetView* targets[2] = {colour_.rtv(k), transmission_.rtv(k)};
+    ctx->ClearRenderTargetView(opacity_.rtv(k), transparent);
+    rhi::RenderTargetView* targets[2] = {colour_.rtv(k), opacity_.rtv(k)};
     ctx->OMSetRenderTargets(2, targets, depth.dsv.Get());
     if (k > 0) a.geometry->SetShaderResource("PreviousLayerDepth", depth_[(k - 1) % 2].srv.Get());
     a.geometry->Draw(ctx, k == 0 ? "PeelNearest" : "Peel", DrawOrder::AsSubmitted);
   }
 
-  // Layer k over the frame, its pixels counted.
+  // Layer k over the composite, its pixels counted.
   void Composite(const RenderArgs& a, uint32_t k) {
     layer_->SetInt(int(k));
     a.context->Begin(queries_[k].Get());
-    DrawOverFrame(a.context, a.targets.frame, composite_);
+    DrawOverFrame(a.context, composite_.rtv(), compositeLayer_);
     a.context->End(queries_[k].Get());
   }
 
@@ -143,13 +153,14 @@ class DepthPeelingMethod final : public Method {
 
   const uint32_t maxLayers_;
   std::vector<std::string> passes_;
-  ColourTarget colour_, transmission_;
+  ColourTarget colour_, opacity_;
+  FloatComposite composite_;  // the layers over the opaque frame
   DepthTexture depth_[2];
   std::vector<ComPtr<rhi::Query>> queries_;  // one per layer: its pixels, counted by its Composite
   uint32_t composited_ = 0;                  // the layers the last frame composited
   int shownLayer_ = -1;
   ComPtr<fx::Effect> effect_;
-  fx::EffectPass *composite_ = nullptr, *showLayer_ = nullptr;
+  fx::EffectPass *compositeLayer_ = nullptr, *showLayer_ = nullptr;
   fx::EffectScalarVariable* layer_ = nullptr;
 };
 
@@ -162,7 +173,8 @@ std::unique_ptr<Method> CreateDepthPeeling(const MethodInfo& info, const MethodS
 
 }  // namespace
 
-extern const MethodInfo kDepthPeeling{"depth-peeling", "oit/depth_peeling.fxh", kNeedsDualSourceBlend,
+extern const MethodInfo kDepthPeeling{"depth-peeling", "oit/depth_peeling.fxh",
+                                      kNeedsDualSourceBlend | kNeedsFloat32Blend,
                                       DrawOrder::AsSubmitted,
                                       "depth peeling: N exact layers composited back to front (document 002)",
                                       CreateDepthPeeling, Exactness::kExactWithEnoughLayers};

@@ -40,9 +40,9 @@ struct DualTargets {
 class DualDepthPeelingMethod final : public Method {
  public:
   explicit DualDepthPeelingMethod(uint32_t layers) : peels_((layers + 1) / 2) {
-    passes_.push_back("Init");
+    passes_ = {"Init", "LoadFrame"};
     for (uint32_t i = 0; i < peels_; ++i) passes_.insert(passes_.end(), {"Peel", "BlendBack"});
-    passes_.push_back("BlendFront");
+    passes_.insert(passes_.end(), {"BlendFront", "StoreFrame"});
   }
 
   bool Initialize(const MethodInfo& info, const MethodSetup& setup, std::string* error) {
@@ -52,7 +52,8 @@ class DualDepthPeelingMethod final : public Method {
         !backOpacity_.Create(device, setup.frame, rhi::DXGI_FORMAT_R16G16B16A16_FLOAT))
       return *error = std::string(info.name) + ": creating the targets failed", false;
     effect_ = LoadMethodEffect(device, info, nullptr, {}, error);
-    if (!effect_ || !(blendBack_ = FindPass(effect_.Get(), nullptr, "BlendBack", error)) ||
+    if (!effect_ || !composite_.Create(device, setup.frame, effect_.Get(), error) ||
+        !(blendBack_ = FindPass(effect_.Get(), nullptr, "BlendBack", error)) ||
         !(blendFront_ = FindPass(effect_.Get(), nullptr, "BlendFront", error)))
       return false;
     effect_->GetVariableByName("BackColour")->AsShaderResource()->SetResource(backColour_.srv.Get());
@@ -64,21 +65,25 @@ class DualDepthPeelingMethod final : public Method {
     size_t pass = 0;
     a.marks->BeginPass(pass++);
     Init(a);
+    a.marks->BeginPass(pass++);
+    composite_.Load(a.context, a.targets.frameView);
     for (uint32_t i = 1; i <= peels_; ++i) {
       a.marks->BeginPass(pass++);
       Peel(a, pair_[(i - 1) % 2], pair_[i % 2]);
       a.marks->BeginPass(pass++);
-      DrawOverFrame(a.context, a.targets.frame, blendBack_);
+      DrawOverFrame(a.context, composite_.rtv(), blendBack_);
     }
-    a.marks->BeginPass(pass);
+    a.marks->BeginPass(pass++);
     const DualTargets& last = pair_[peels_ % 2];
     effect_->GetVariableByName("FrontColour")->AsShaderResource()->SetResource(last.frontColour.srv.Get());
     effect_->GetVariableByName("FrontOpacity")->AsShaderResource()->SetResource(last.frontOpacity.srv.Get());
-    DrawOverFrame(a.context, a.targets.frame, blendFront_);
+    DrawOverFrame(a.context, composite_.rtv(), blendFront_);
+    a.marks->BeginPass(pass);
+    composite_.Store(a.context, a.targets.frame);
   }
 
   uint64_t MemoryBytes() const override {
-    return pair_[0].bytes() + pair_[1].bytes() + backColour_.bytes + backOpacity_.bytes;
+    return pair_[0].bytes() + pair_[1].bytes() + backColour_.bytes + backOpacity_.bytes + composite_.bytes();
   }
   const std::vector<std::string>& PassNames() const override { return passes_; }
 
@@ -119,6 +124,7 @@ class DualDepthPeelingMethod final : public Method {
   std::vector<std::string> passes_;
   DualTargets pair_[2];
   ColourTarget backColour_, backOpacity_;
+  FloatComposite composite_;  // the layers over the opaque frame
   ComPtr<fx::Effect> effect_;
   fx::EffectPass *blendBack_ = nullptr, *blendFront_ = nullptr;
 };

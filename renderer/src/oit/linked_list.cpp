@@ -91,7 +91,7 @@ std::unique_ptr<Method> CreateLinkedList(const MethodInfo& info, const MethodSet
 
 extern const MethodInfo kLinkedList{"linked-list",
                                     "oit/linked_list.fxh",
-                                    kNeedsPixelShaderUavs,
+                                    kNeedsPixelShaderUavs | kNeedsDualSourceBlend,
                                     DrawOrder::AsSubmitted,
                                     "exact: per-pixel linked lists of (id, depth) in a fixed node pool, lost "
                                     "fragments counted, deferred "

@@ -1,5 +1,6 @@
 #include "oit/peeling_targets.h"
 
+#include "renderer/effect_files.h"
 #include "rhi/format_info.h"
 
 namespace renderer::oit {
@@ -68,6 +69,32 @@ void DrawOverFrame(DeviceContext* context, RenderTargetView* frame, fx::EffectPa
   context->IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY_TRIANGLELIST);
   pass->Apply(0, context);
   context->Draw(3, 0);
+}
+
+bool FloatComposite::Create(Device* device, const FrameDesc& frame, fx::Effect* effect, std::string* error) {
+  if (!target_.Create(device, frame, DXGI_FORMAT_R32G32B32A32_FLOAT))
+    return *error = "creating the float32 composite failed", false;
+  source_ = effect->GetVariableByName("CopySource")->AsShaderResource();
+  return (load_ = FindPass(effect, nullptr, "LoadFrame", error)) &&
+         (store_ = FindPass(effect, nullptr, "StoreFrame", error));
+}
+
+void FloatComposite::Load(DeviceContext* context, ShaderResourceView* frame) const {
+  Copy(context, frame, target_.rtv(), load_);
+}
+
+void FloatComposite::Store(DeviceContext* context, RenderTargetView* frame) const {
+  Copy(context, target_.srv.Get(), frame, store_);
+}
+
+// The target may be what the pass before read, and the source what the next one
+// renders to: both leave the pixel shader's resources unbound.
+void FloatComposite::Copy(DeviceContext* context, ShaderResourceView* source, RenderTargetView* target,
+                          fx::EffectPass* pass) const {
+  UnbindPixelShaderResources(context);
+  source_->SetResource(source);
+  DrawOverFrame(context, target, pass);
+  UnbindPixelShaderResources(context);
 }
 
 }  // namespace renderer::oit

@@ -43,4 +43,24 @@ void UnbindPixelShaderResources(rhi::DeviceContext* context);
 // A full-screen triangle over the frame alone (no depth buffer) with `pass`.
 void DrawOverFrame(rhi::DeviceContext* context, rhi::RenderTargetView* frame, fx::EffectPass* pass);
 
+// The float32 composite the peeling methods blend their layers over
+// (shaders_hlsl/oit/float_composite.hlsli): Load copies the opaque frame in, Store
+// copies it back into the frame, rounded once, with the effect's LoadFrame and
+// StoreFrame passes.
+class FloatComposite {
+ public:
+  bool Create(rhi::Device* device, const FrameDesc& frame, fx::Effect* effect, std::string* error);
+  void Load(rhi::DeviceContext* context, rhi::ShaderResourceView* frame) const;
+  void Store(rhi::DeviceContext* context, rhi::RenderTargetView* frame) const;
+  rhi::RenderTargetView* rtv() const { return target_.rtv(); }
+  uint64_t bytes() const { return target_.bytes; }
+
+ private:
+  void Copy(rhi::DeviceContext* context, rhi::ShaderResourceView* source, rhi::RenderTargetView* target,
+            fx::EffectPass* pass) const;
+  ColourTarget target_;  // R32G32B32A32_FLOAT
+  fx::EffectPass *load_ = nullptr, *store_ = nullptr;
+  fx::EffectShaderResourceVariable* source_ = nullptr;
+};
+
 }  // namespace renderer::oit

@@ -66,7 +66,7 @@ class PrefixSumMethod final : public Method {
     if (!scan_) return false;
     passNames_ = {"Count"};
     passNames_.insert(passNames_.end(), scan_->PassNames().begin(), scan_->PassNames().end());
-    passNames_.insert(passNames_.end(), {"Fill", "Resolve"});
+    passNames_.insert(passNames_.end(), {"Fill", "ShadeOpaque", "Resolve"});
     return true;
   }
 
@@ -99,8 +99,12 @@ class PrefixSumMethod final : public Method {
     a.geometry->Draw(ctx, "Fill", DrawOrder::AsSubmitted);
 
     a.marks->BeginPass(pass++);
+    ctx->OMSetRenderTargets(0, nullptr, nullptr);  // unbinds the UAVs: the resolve reads them
+    a.opaque->ShadeVisibility(ctx);  // step 6's opaque pixels, under the translucent composite
+
+    a.marks->BeginPass(pass++);
     rhi::RenderTargetView* frame = a.targets.frame;
-    ctx->OMSetRenderTargets(1, &frame, nullptr);  // unbinds the UAVs: the resolve reads them
+    ctx->OMSetRenderTargets(1, &frame, nullptr);
     a.geometry->SetEffectVariables([&](fx::Effect& e) {
       e.GetVariableByName("Counts")->AsShaderResource()->SetResource(counts_.srv.Get());
       e.GetVariableByName("Fragments")->AsShaderResource()->SetResource(fragments_.srv.Get());
@@ -125,6 +129,7 @@ class PrefixSumMethod final : public Method {
     return f;
   }
   const std::vector<std::string>& PassNames() const override { return passNames_; }
+  OpaqueShading Opaque() const override { return OpaqueShading::VisibilityBuffer; }
   uint64_t LostFragments() const override { return lost_; }
 
  private:
@@ -280,7 +285,7 @@ std::optional<PrefixSumFrame> ReadPrefixSumFrame(const Method& method, rhi::Devi
 
 extern const MethodInfo kPrefixSum{"prefix-sum",
                                    "oit/prefix_sum.fxh",
-                                   kNeedsPixelShaderUavs | kNeedsCompute,
+                                   kNeedsPixelShaderUavs | kNeedsCompute | kNeedsDualSourceBlend,
                                    DrawOrder::AsSubmitted,
                                    "exact: per-pixel counts, a prefix sum, an 8-byte (id, depth) fragment "
                                    "buffer, deferred shading "

@@ -13,7 +13,11 @@ namespace renderer::oit {
   X(kDepthPeeling)              \
   X(kDualDepthPeeling)          \
   X(kPrefixSum)                 \
-  X(kLinkedList)
+  X(kLinkedList)                \
+  X(kMboit)                     \
+  X(kMomentTransparency)        \
+  X(kMomentTransparencyMinDepth) \
+  X(kMomentTransparencyMinDepth16)
 
 #define RENDERER_OIT_DECLARE(info) extern const MethodInfo info;
 RENDERER_OIT_METHODS(RENDERER_OIT_DECLARE)

@@ -26,15 +26,6 @@ struct Register {
   uint32_t space = 0;
 };
 
-// `< string UIName = "Color"; float UIMin = 0; >` on a variable, technique or pass.
-struct Annotation {
-  std::string type;         // as written: "string", "float", "float4", "int", "bool", ...
-  std::string name;
-  std::string stringValue;  // string annotations
-  std::vector<double> values;  // numeric annotations, flattened (bools are 0 / 1)
-  SourceLocation where;
-};
-
 // ---------------------------------------------------------------------------
 // Numeric variables and constant buffers
 
@@ -73,6 +64,19 @@ struct StructMember {
   std::string name;
   VariableType type;
   uint32_t offset = 0;  // from the start of the struct
+};
+
+// `< string UIName = "Color"; float UIMin = 0; >` on a variable, technique or pass.
+struct Annotation {
+  std::string type;         // as written: "string", "float", "float4", "int", "bool", ...
+  std::string name;
+  std::string stringValue;  // string annotations
+  std::vector<double> values;  // numeric annotations, flattened (bools are 0 / 1)
+  // Numeric annotations: the type resolved and laid out as a cbuffer variable
+  // at offset 0, and its bytes in FX11's packing (what GetFloat & co. read).
+  VariableType valueType;
+  std::vector<uint8_t> bytes;
+  SourceLocation where;
 };
 
 struct ConstantVariable {

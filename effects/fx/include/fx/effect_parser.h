@@ -6,7 +6,14 @@
 // FX9-style pass assignments (`VertexShader = compile vs_2_0 VS();` - write
 // SetVertexShader(...); the `compile profile F()` expression itself is
 // accepted), RenderTargetView / DepthStencilView / GenerateMips pass states,
-// and nested struct definitions.
+// nested struct definitions, and D3D9 sampling: D3D9 sampler states
+// (MinFilter, ...) and tex2D-style functions (fxc takes them in shader model 4
+// and 5 only under /Gec, and D3D11 cannot bind the combined samplers).
+//
+// What fxc accepts and glslang does not is rewritten in the HLSL it gets:
+// static declarations inside a cbuffer move before it, object types spelled
+// in another case (texture2D) get glslang's spelling, and an entry point with
+// uniform parameters or overloads is reached through a generated wrapper.
 #pragma once
 
 #include <string>

@@ -10,7 +10,9 @@
 //    and the result is cached on disk (EFFECT_OPTIONS::CacheDirectory);
 //  - PASS_DESC::pIAInputSignature is the vertex shader's SPIR-V, which is what
 //    rhi::Device::CreateInputLayout matches against;
-//  - no groups, interfaces, classes, annotations-by-variable or effect pools.
+//  - EFFECT_SHADER_DESC::pBytecode and pInputSignature are SPIR-V;
+//  - no ID3DX11EffectGroup (fxgroup techniques are found by name like the
+//    others; EFFECT_DESC::Groups counts them), interfaces, classes or effect pools.
 // Variables, techniques and passes are owned by the Effect (never released by
 // the caller), as in FX11. Methods of an invalid object (IsValid() == FALSE)
 // fail with E_FAIL and return invalid objects.
@@ -91,6 +93,8 @@ enum SHADER_VARIABLE_CLASS : UINT {
 };
 
 // D3DX11_EFFECT_TYPE_DESC, reduced: TypeName, Class, Elements, Rows, Columns, PackedSize.
+// TypeName of a templated object type keeps its arguments as declared
+// ("RWStructuredBuffer<float4>"), so a tool can size a buffer for it.
 struct EFFECT_TYPE_DESC {
   LPCSTR TypeName = nullptr;
   SHADER_VARIABLE_CLASS Class = SVC_OBJECT;
@@ -114,12 +118,33 @@ class EffectRasterizerVariable;
 class EffectConstantBuffer;
 class EffectShaderVariable;
 
+// D3DX11_EFFECT_SHADER_DESC, less the signature entry counts: a shader of an
+// effect as compiled. NULL shaders have no bytecode.
+struct EFFECT_SHADER_DESC {
+  const void* pInputSignature = nullptr;  // the SPIR-V, as PASS_DESC::pIAInputSignature
+  BOOL IsInline = rhi::FALSE;                // written in the pass (CompileShader there), not a variable
+  const void* pBytecode = nullptr;        // SPIR-V words
+  UINT BytecodeLength = 0;                // bytes
+  LPCSTR SODecls[rhi::SO_STREAM_COUNT] = {};  // ConstructGSWithSO's declarations as written, null when none
+  UINT RasterizedStream = 0;
+};
+
+// D3DX11_PASS_SHADER_DESC: the shader variable a pass sets on a stage and the
+// element of it. Inline and NULL shaders come as anonymous shader variables.
+struct PASS_SHADER_DESC {
+  EffectShaderVariable* pShaderVariable = nullptr;
+  UINT ShaderIndex = 0;
+};
+
 // ID3DX11EffectVariable.
 class EffectVariable {
  public:
   virtual BOOL IsValid() = 0;
   virtual HRESULT GetDesc(EFFECT_VARIABLE_DESC* pDesc) = 0;
   virtual HRESULT GetTypeDesc(EFFECT_TYPE_DESC* pDesc) = 0;  // FX11: GetType()->GetDesc()
+  // Annotations are read-only variables: AsString()->GetString, AsScalar()->GetFloat, ...
+  virtual EffectVariable* GetAnnotationByIndex(UINT Index) = 0;
+  virtual EffectVariable* GetAnnotationByName(LPCSTR Name) = 0;
   virtual EffectVariable* GetMemberByIndex(UINT Index) = 0;
   virtual EffectVariable* GetMemberByName(LPCSTR Name) = 0;
   virtual EffectVariable* GetElement(UINT Index) = 0;
@@ -281,6 +306,7 @@ class EffectShaderVariable : public virtual EffectVariable {
   virtual HRESULT GetGeometryShader(UINT Index, rhi::GeometryShader** ppShader) = 0;
   virtual HRESULT GetPixelShader(UINT Index, rhi::PixelShader** ppShader) = 0;
   virtual HRESULT GetComputeShader(UINT Index, rhi::ComputeShader** ppShader) = 0;
+  virtual HRESULT GetShaderDesc(UINT ShaderIndex, EFFECT_SHADER_DESC* pDesc) = 0;
 
  protected:
   ~EffectShaderVariable() = default;
@@ -291,6 +317,15 @@ class EffectPass {
  public:
   virtual BOOL IsValid() = 0;
   virtual HRESULT GetDesc(PASS_DESC* pDesc) = 0;
+  // What the pass sets on each stage (a stage it leaves alone reads as NULL).
+  virtual HRESULT GetVertexShaderDesc(PASS_SHADER_DESC* pDesc) = 0;
+  virtual HRESULT GetGeometryShaderDesc(PASS_SHADER_DESC* pDesc) = 0;
+  virtual HRESULT GetPixelShaderDesc(PASS_SHADER_DESC* pDesc) = 0;
+  virtual HRESULT GetHullShaderDesc(PASS_SHADER_DESC* pDesc) = 0;
+  virtual HRESULT GetDomainShaderDesc(PASS_SHADER_DESC* pDesc) = 0;
+  virtual HRESULT GetComputeShaderDesc(PASS_SHADER_DESC* pDesc) = 0;
+  virtual EffectVariable* GetAnnotationByIndex(UINT Index) = 0;
+  virtual EffectVariable* GetAnnotationByName(LPCSTR Name) = 0;
   // Sets what the pass assigns (shaders, NULL included; blend, depth-stencil and
   // rasterizer states with factor, mask and ref), uploads changed constant
   // buffers and binds, for each stage it sets a shader on, the cbuffers, SRVs,
@@ -312,6 +347,8 @@ class EffectTechnique {
  public:
   virtual BOOL IsValid() = 0;
   virtual HRESULT GetDesc(TECHNIQUE_DESC* pDesc) = 0;
+  virtual EffectVariable* GetAnnotationByIndex(UINT Index) = 0;
+  virtual EffectVariable* GetAnnotationByName(LPCSTR Name) = 0;
   virtual EffectPass* GetPassByIndex(UINT Index) = 0;
   virtual EffectPass* GetPassByName(LPCSTR Name) = 0;
 

@@ -43,10 +43,31 @@ struct FrameDesc {
   uint32_t sampleCount = 1;
 };
 
+// How the frame driver draws the opaque objects before the method's passes.
+enum class OpaqueShading {
+  Forward,  // shaded as rasterized, into the frame
+  // Document 004: into a visibility buffer (the triangle id a pixel shows) and the
+  // depth; the frame holds only the background until the method calls
+  // OpaqueScene::ShadeVisibility, which shades those pixels from their triangles.
+  VisibilityBuffer,
+};
+
+// The opaque objects, for a method that shades them deferred (OpaqueShading::VisibilityBuffer).
+class OpaqueScene {
+ public:
+  // Shades every pixel the visibility buffer names into the frame (one full-screen
+  // pass; the background keeps its colour). Binds its own render target.
+  virtual void ShadeVisibility(rhi::DeviceContext* context) = 0;
+
+ protected:
+  ~OpaqueScene() = default;
+};
+
 // The frame, with the opaque objects drawn: the method leaves its composite in `frame`.
 struct FrameTargets {
   rhi::RenderTargetView* frame = nullptr;  // R8G8B8A8_UNORM
   rhi::DepthStencilView* depth = nullptr;  // D32_FLOAT opaque depth: tested, never written by translucency
+  rhi::ShaderResourceView* frameView = nullptr;  // the frame's texture, for a method that composites elsewhere
 };
 
 enum class DrawOrder {
@@ -91,6 +112,10 @@ struct RenderArgs {
   FrameTargets targets;
   Geometry* geometry = nullptr;
   PassMarks* marks = nullptr;
+  OpaqueScene* opaque = nullptr;  // the opaque objects, when the method's Opaque() is VisibilityBuffer
+  // The frame's projection planes, view depths in scene units (renderer::Camera):
+  // what a method needs to turn window depth into view depth (the moment methods).
+  float nearPlane = 0, farPlane = 0;
 };
 
 class Method {
@@ -102,6 +127,8 @@ class Method {
   virtual uint64_t MemoryBytes() const = 0;
   // Its passes in the order Render runs them (the names of their effect passes).
   virtual const std::vector<std::string>& PassNames() const = 0;
+  // How the opaque objects reach the frame before Render.
+  virtual OpaqueShading Opaque() const { return OpaqueShading::Forward; }
 
   // Methods that keep the translucent fragments as depth layers (depth peeling).
   // From the next Render on, the frame shows layer `layer` (0: the nearest) alone
@@ -133,6 +160,9 @@ struct FragmentStorage {
   uint32_t nodesPerPixel = 16;
 };
 
+// Document 003's m, the slope of the minimum-depth correction (per scene unit of view depth).
+inline constexpr float kDefaultMinDepthSlope = 100.0f;
+
 // What a method is created with.
 struct MethodSetup {
   rhi::Device* device = nullptr;
@@ -140,6 +170,7 @@ struct MethodSetup {
   uint32_t peelLayers = kDefaultPeelLayers;  // the peeling methods: at most this many depth layers
   uint32_t objectCount = 0;  // the scene's translucent objects
   FragmentStorage fragmentStorage;
+  float minDepthSlope = kDefaultMinDepthSlope;  // moment-transparency-mindepth: m
 };
 
 using MethodFactory = std::unique_ptr<Method> (*)(const MethodInfo& info, const MethodSetup& setup,

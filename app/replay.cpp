@@ -43,6 +43,14 @@
 //       A method that refuses a scene is skipped with its reason; a method of more than two
 //       passes also gets a line of its passes' GPU ms by name.
 //       --warmup defaults to the updates the smoke needs to reach its steady state.
+//   replay --compare [--size WxH] [--out DIR] [--frames N] [--peel-layers N]
+//       every registered method on every registered scene at each scene's default frame,
+//       against the scene's exact reference (renderer/comparison.h): RMSE, PSNR, SSIM,
+//       pixels off by > 2/255, bytes per pixel, fragments, GPU ms (the median of N timed
+//       draws of the compared frame, default 5) -> DIR/comparison.md,
+//       DIR/compare_grid.png and DIR/pareto_<scene>.png (app/compare_report.h).
+//       --peel-layers: the most layers the peeling methods get (default 64; a scene
+//       with fewer gets its own count).
 //   --min-depth-slope M (--demo): document 003's m for moment-transparency-mindepth (default 100,
 //       per scene unit of view depth).
 //   --msaa 4|8 (--demo, --figures, --bench): the samples of the multisampled methods
@@ -63,6 +71,8 @@
 #include <string>
 #include <vector>
 
+#include "compare_report.h"
+#include "renderer/comparison.h"
 #include "renderer/translucency.h"
 #include "replay_window.h"
 #include "rhi/rhi.h"
@@ -84,10 +94,11 @@ struct Options {
   int frames = -1;
   uint32_t width = 640, height = 360;
   std::string out = "out/replay";
-  bool figures = false, bench = false, allFrames = false, listMethods = false, listScenes = false;
+  bool figures = false, bench = false, compare = false, allFrames = false, listMethods = false, listScenes = false;
   std::string scene = "demo";  // --bench: demo | paper | heavy
   int warmup = -1;
   uint32_t peelLayers = renderer::oit::kDefaultPeelLayers;
+  bool peelLayersGiven = false;
   int layer = -1;  // --layer: the layer shown alone
   renderer::oit::FragmentStorage fragmentStorage;  // --fragment-sizing
   std::string document;  // --figures --document 001|003: that document's figures alone
@@ -601,6 +612,42 @@ int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
   return 0;
 }
 
+int RunCompare(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o, const std::string& command) {
+  CompareRun run;
+  run.adapter = device->GetAdapterName();
+  run.command = command;
+  run.settings.width = o.width, run.settings.height = o.height;
+  if (o.frames > 0) run.settings.timedFrames = o.frames;
+  if (o.peelLayersGiven) run.settings.maxLayers = o.peelLayers;
+  std::vector<renderer::SceneComparison> scenes;
+  std::string error;
+  auto progress = [](const renderer::SceneInfo& scene, const MethodInfo& method) {
+    std::printf("compare: %s / %s\n", scene.name, method.name);
+    std::fflush(stdout);
+  };
+  if (!renderer::CompareMethods(device, ctx, run.settings, &scenes, &error, progress)) Fail(error);
+  std::filesystem::create_directories(o.out);
+  const std::filesystem::path out(o.out);
+  if (!WriteComparisonMarkdown((out / "comparison.md").string(), run, scenes, &error) ||
+      !WriteCompareGrid((out / "compare_grid.png").string(), run, scenes, &error) ||
+      !WriteParetoPlots(o.out, scenes, &error))
+    Fail(error);
+  std::printf("%-12s %-28s %9s %8s %7s %8s %10s %9s\n", "scene", "method", "RMSE", "PSNR", "SSIM", ">2/255",
+              "bytes/px", "GPU ms");
+  for (const renderer::SceneComparison& scene : scenes)
+    for (const renderer::MethodResult& r : scene.methods) {
+      if (r.refused) {
+        std::printf("%-12s %-28s refused: %s\n", scene.scene->name, r.method->name, r.reason.c_str());
+        continue;
+      }
+      std::printf("%-12s %-28s %9.3f %8.2f %7.4f %7.2f%% %10.1f %9.3f%s\n", scene.scene->name, r.method->name, r.rmse,
+                  r.psnr, r.ssim, 100.0 * r.shareOff, r.bytesPerPixel, r.gpuMs,
+                  r.method == scene.reference ? "  (reference)" : "");
+    }
+  std::printf("wrote %s, %s and the Pareto plots\n", (out / "comparison.md").c_str(), (out / "compare_grid.png").c_str());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -632,6 +679,8 @@ int main(int argc, char** argv) {
       o.out = next();
     } else if (a == "--figures") {
       o.figures = true;
+    } else if (a == "--compare") {
+      o.compare = true;
     } else if (a == "--document") {
       o.document = next();
       if (o.document != "001" && o.document != "003")
@@ -646,6 +695,7 @@ int main(int argc, char** argv) {
       o.allFrames = true;
     } else if (a == "--peel-layers") {
       o.peelLayers = uint32_t(std::atoi(next().c_str()));
+      o.peelLayersGiven = true;
     } else if (a == "--fragment-sizing") {
       const std::string v = next();
       if (v != "exact" && v != "late") Fail("--fragment-sizing takes exact or late");
@@ -664,7 +714,7 @@ int main(int argc, char** argv) {
            "\nusage: replay --demo SCENE --method METHOD [--frames N] [--size WxH] [--peel-layers N] [--layer K]"
            " [--fragment-sizing exact|late] [--min-depth-slope M] [--msaa 4|8] --out DIR"
            "\n       replay --list-methods | --list-scenes"
-           "\n       replay --figures [--document 001|003] --out DIR\n       replay --bench [--scene demo|paper|heavy|complexity] [--frames N] [--warmup N]"
+           "\n       replay --figures [--document 001|003] --out DIR\n       replay --compare [--size WxH] [--out DIR] [--frames N] [--peel-layers N]\n       replay --bench [--scene demo|paper|heavy|complexity] [--frames N] [--warmup N]"
            "\n  scenes: " + renderer::SceneNames() + "\n  methods: " + renderer::oit::MethodNames());
     }
   }
@@ -680,7 +730,10 @@ int main(int argc, char** argv) {
   rhi::ComPtr<rhi::DeviceContext> ctx;
   if (rhi::FAILED(rhi::CreateDevice(&options, device.GetAddressOf(), ctx.GetAddressOf())))
     Fail("CreateDevice failed (is a Vulkan driver, e.g. mesa-vulkan-drivers, installed?)");
-  int rc = o.bench ? RunBench(device.Get(), ctx.Get(), o)
+  std::string command = "replay";
+  for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+  int rc = o.compare ? RunCompare(device.Get(), ctx.Get(), o, command)
+           : o.bench ? RunBench(device.Get(), ctx.Get(), o)
            : o.figures ? RunFigures(device.Get(), ctx.Get(), o)
                        : RunOne(device.Get(), ctx.Get(), o);
   if (gErrors > 0) Fail(std::to_string(gErrors) + " RHI error message(s) (see above)");

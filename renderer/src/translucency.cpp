@@ -1,8 +1,5 @@
 #include "renderer/translucency.h"
 
-#include <cmath>
-#include <limits>
-
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "fx/effect.h"
@@ -316,7 +313,18 @@ Camera Translucency::CameraForFrame(uint32_t n) const {
   return c;
 }
 
-bool Translucency::RenderFrame(const oit::MethodInfo& method) {
+bool Translucency::RenderFrame(const oit::MethodInfo& method) { return Render(method, true); }
+
+bool Translucency::RenderFrameAgain(const oit::MethodInfo& method) {
+  if (frame_ == 0) return error_ = "RenderFrameAgain before the first frame", false;
+  if (method.order == oit::DrawOrder::BackToFront && !lastUpdateCounted_)
+    return error_ = std::string(method.name) + " sorts the live particles, which the last update did not count "
+                    "(TranslucencySettings::countParticles)", false;
+  return Render(method, false);
+}
+
+// One frame with `method`; `advance`: the next frame (camera, object updates), else the last one again.
+bool Translucency::Render(const oit::MethodInfo& method, bool advance) {
   Impl& m = *impl_;
   MethodState* state = Prepare(method);
   if (!state) return false;
@@ -324,7 +332,7 @@ bool Translucency::RenderFrame(const oit::MethodInfo& method) {
   // Every frame starts from D3D11's default state, so that no binding of the last
   // frame (the composing pass's shader resources, say) meets this frame's outputs.
   ctx->ClearState();
-  camera_ = cameraOverride_ ? *cameraOverride_ : CameraForFrame(frame_);
+  if (advance) camera_ = cameraOverride_ ? *cameraOverride_ : CameraForFrame(frame_);
   // A back-to-front method sorts what the updates left alive: count it.
   const bool count = settings_.countParticles || method.order == oit::DrawOrder::BackToFront;
   const bool timed = settings_.timestamps;
@@ -335,7 +343,10 @@ bool Translucency::RenderFrame(const oit::MethodInfo& method) {
   const bool visibility = state->method->Opaque() == oit::OpaqueShading::VisibilityBuffer;
   OpaquePass(visibility);
   if (timed) m.Stamp(*state, 1);
-  for (auto& object : m.objects) object->Update(ctx, count);
+  if (advance) {
+    for (auto& object : m.objects) object->Update(ctx, count);
+    lastUpdateCounted_ = count;
+  }
   if (timed) m.Stamp(*state, 2);
   FrameGeometry geometry(m, method, camera_, {settings_.width, settings_.height, 1});
   FrameMarks marks(ctx, timed ? &state->stamps : nullptr, m.fragmentPassStatistics.Get(),
@@ -357,7 +368,7 @@ bool Translucency::RenderFrame(const oit::MethodInfo& method) {
   }
   if (!geometry.error.empty()) return error_ = geometry.error, false;
   if (!opaque.error.empty()) return error_ = opaque.error, false;
-  ++frame_;
+  if (advance) ++frame_;
   return true;
 }
 
@@ -442,22 +453,6 @@ PassTimes Translucency::LastTimes() {
   t.fragmentPass = state->method->FragmentPass();
   t.fragmentPassInvocations = statistics.PSInvocations;
   return t;
-}
-
-double Rmse(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
-  if (a.size() != b.size() || a.empty()) return std::numeric_limits<double>::infinity();
-  double sum = 0;
-  size_t n = 0;
-  for (size_t i = 0; i < a.size(); i += 4)
-    for (int c = 0; c < 3; ++c, ++n) {
-      double d = double(a[i + c]) - double(b[i + c]);
-      sum += d * d;
-    }
-  return std::sqrt(sum / double(n));
-}
-
-double Psnr(double rmse) {
-  return rmse == 0 ? std::numeric_limits<double>::infinity() : 20.0 * std::log10(255.0 / rmse);
 }
 
 }  // namespace renderer

@@ -24,6 +24,7 @@
 
 #include <glm/glm.hpp>
 
+#include "renderer/image_metrics.h"  // Rmse, Psnr: the replays' image distances
 #include "renderer/oit/method.h"
 #include "renderer/particle_system.h"
 #include "renderer/scenes.h"
@@ -95,6 +96,13 @@ class Translucency {
   // False when the method could not be made for this scene (error() says why);
   // the frame index does not advance then.
   bool RenderFrame(const oit::MethodInfo& method);
+  // Renders the last frame again with `method`: its camera and its objects as the last
+  // RenderFrame left them (no update), so that several methods draw the very same
+  // frame (the comparison, renderer/comparison.h). A back-to-front method needs that
+  // frame's update to have counted the particles (countParticles, or a back-to-front
+  // RenderFrame). False (and error()) before the first frame or when the method
+  // cannot be made.
+  bool RenderFrameAgain(const oit::MethodInfo& method);
   const std::string& error() const { return error_; }
 
   // The frame as tightly packed RGBA8 rows.
@@ -128,6 +136,7 @@ class Translucency {
   Translucency() = default;
   bool Initialize(rhi::Device* device, rhi::DeviceContext* context, const TranslucencySettings& settings);
   MethodState* Prepare(const oit::MethodInfo& method);
+  bool Render(const oit::MethodInfo& method, bool advance);
   bool PrepareVisibilityBuffer();
   void OpaquePass(bool visibilityBuffer);
   void DrawBackdrop(rhi::RenderTargetView* color, rhi::DepthStencilView* depth);
@@ -137,14 +146,11 @@ class Translucency {
   TranslucencySettings settings_;
   const SceneInfo* scene_ = nullptr;
   uint32_t frame_ = 0;
+  bool lastUpdateCounted_ = false;
   Camera camera_;
   std::optional<Camera> cameraOverride_;
   std::string error_;
   std::unique_ptr<Impl> impl_;
 };
-
-// Image distance of two RGBA8 images over RGB, in 8-bit steps.
-double Rmse(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b);
-double Psnr(double rmse);  // dB; infinity when rmse == 0
 
 }  // namespace renderer

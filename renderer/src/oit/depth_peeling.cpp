@@ -177,6 +177,6 @@ extern const MethodInfo kDepthPeeling{"depth-peeling", "oit/depth_peeling.fxh",
                                       kNeedsDualSourceBlend | kNeedsFloat32Blend,
                                       DrawOrder::AsSubmitted,
                                       "depth peeling: N exact layers composited back to front (document 002)",
-                                      CreateDepthPeeling};
+                                      CreateDepthPeeling, Exactness::kExactWithEnoughLayers};
 
 }  // namespace renderer::oit

@@ -144,6 +144,7 @@ extern const MethodInfo kDualDepthPeeling{
     DrawOrder::AsSubmitted,
     "dual depth peeling: the N/2 nearest and farthest layers, 2 a pass, coloured transmission through "
     "dual-source blending (Bavoil & Myers 2008)",
-    CreateDualDepthPeeling};
+    CreateDualDepthPeeling,
+    Exactness::kExactWithEnoughLayers};
 
 }  // namespace renderer::oit

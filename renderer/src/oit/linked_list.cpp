@@ -96,6 +96,7 @@ extern const MethodInfo kLinkedList{"linked-list",
                                     "exact: per-pixel linked lists of (id, depth) in a fixed node pool, lost "
                                     "fragments counted, deferred "
                                     "shading; one object",
-                                    CreateLinkedList};
+                                    CreateLinkedList,
+                                    Exactness::kExact};  // while its node pool holds every fragment
 
 }  // namespace renderer::oit

@@ -290,6 +290,7 @@ extern const MethodInfo kPrefixSum{"prefix-sum",
                                    "exact: per-pixel counts, a prefix sum, an 8-byte (id, depth) fragment "
                                    "buffer, deferred shading "
                                    "(document 004); one object; buffer sized to each frame's total",
-                                   CreatePrefixSum};
+                                   CreatePrefixSum,
+                                   Exactness::kExact};
 
 }  // namespace renderer::oit

@@ -201,6 +201,16 @@ struct MethodSetup {
 using MethodFactory = std::unique_ptr<Method> (*)(const MethodInfo& info, const MethodSetup& setup,
                                                   std::string* error);
 
+// Whether a method's composite is the exact one: every fragment of a pixel composited
+// in depth order with its object's per-surface model (oit/common.fxh,
+// TransmissionFactor). The comparison (renderer/comparison.h) takes its reference from
+// the exact methods and expects them at zero error.
+enum class Exactness {
+  kApproximate,
+  kExact,                  // at any depth complexity (the fragment-buffer methods)
+  kExactWithEnoughLayers,  // when MethodSetup::peelLayers covers every layer of the pixel (peeling)
+};
+
 struct MethodInfo {
   const char* name;      // command lines and file names: "wboit"
   const char* include;   // its effect include, relative to shaders_hlsl/: "oit/wboit.fxh"
@@ -208,6 +218,7 @@ struct MethodInfo {
   DrawOrder order;       // the order its passes draw the geometry in
   const char* summary;   // one line for listings
   MethodFactory create;
+  Exactness exactness = Exactness::kApproximate;
 };
 
 // The registry: every method, in the order listings show them.

@@ -31,7 +31,7 @@
 //       fig001_triangles_wboit_additive_linear_exposure.png (the discussion's variants);
 //       --document 001: only these
 //   replay --bench [--scene demo|paper|heavy|complexity] [--frames N] [--warmup N] [--size WxH]
-//                  [--fragment-sizing exact|late] [--msaa 4|8]
+//                  [--fragment-sizing exact|late|redraw] [--msaa 4|8]
 //       per registered method: FPS and frame ms from the GPU (TIMESTAMP queries inside a
 //       TIMESTAMP_DISJOINT query, median over N frames), per-pass GPU ms (the "3D pass" is
 //       the method's pass that draws the translucent objects, Method::FragmentPass), CPU ms per frame
@@ -56,8 +56,10 @@
 //   --msaa 4|8 (--demo, --figures, --bench): the samples of the multisampled methods
 //       (wboit-msaa and its variants; default 4; 8 refused where the device has none).
 //   --fragment-sizing (--demo, --bench): how prefix-sum sizes its fragment buffer: exact
-//       (default: each frame's own total, the CPU waits for it) or late (earlier frames'
-//       totals, no wait; a frame that outgrows the buffer loses fragments, reported).
+//       (default: each frame's own total, the CPU waits for it), late (earlier frames'
+//       totals, no wait; a frame that outgrows the buffer loses fragments, reported) or
+//       redraw (the same, the frame's total read at its end; a frame that did not fit is
+//       drawn again with the buffer grown).
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb_image_write.h>
 
@@ -698,8 +700,10 @@ int main(int argc, char** argv) {
       o.peelLayersGiven = true;
     } else if (a == "--fragment-sizing") {
       const std::string v = next();
-      if (v != "exact" && v != "late") Fail("--fragment-sizing takes exact or late");
-      o.fragmentStorage.exactSizing = v == "exact";
+      if (v != "exact" && v != "late" && v != "redraw") Fail("--fragment-sizing takes exact, late or redraw");
+      o.fragmentStorage.sizing = v == "exact" ? renderer::oit::FragmentSizing::Exact
+                                 : v == "late" ? renderer::oit::FragmentSizing::Late
+                                               : renderer::oit::FragmentSizing::GrowAndRedraw;
     } else if (a == "--min-depth-slope") {
       o.minDepthSlope = float(std::atof(next().c_str()));
       if (!(o.minDepthSlope > 0)) Fail("--min-depth-slope takes a positive m (per scene unit of view depth)");
@@ -712,7 +716,7 @@ int main(int argc, char** argv) {
     } else {
       Fail("unknown argument " + a +
            "\nusage: replay --demo SCENE --method METHOD [--frames N] [--size WxH] [--peel-layers N] [--layer K]"
-           " [--fragment-sizing exact|late] [--min-depth-slope M] [--msaa 4|8] --out DIR"
+           " [--fragment-sizing exact|late|redraw] [--min-depth-slope M] [--msaa 4|8] --out DIR"
            "\n       replay --list-methods | --list-scenes"
            "\n       replay --figures [--document 001|003] --out DIR\n       replay --compare [--size WxH] [--out DIR] [--frames N] [--peel-layers N]\n       replay --bench [--scene demo|paper|heavy|complexity] [--frames N] [--warmup N]"
            "\n  scenes: " + renderer::SceneNames() + "\n  methods: " + renderer::oit::MethodNames());

@@ -313,7 +313,14 @@ Camera Translucency::CameraForFrame(uint32_t n) const {
   return c;
 }
 
-bool Translucency::RenderFrame(const oit::MethodInfo& method) { return Render(method, true); }
+// A method whose storage proved too small for the frame has grown it: the frame is
+// drawn again, the same frame (FragmentSizing::GrowAndRedraw).
+bool Translucency::RenderFrame(const oit::MethodInfo& method) {
+  if (!Render(method, true)) return false;
+  if (!impl_->methods.at(method.name).method->FrameNeedsRedraw(impl_->context)) return true;
+  ++redrawnFrames_;
+  return Render(method, false);
+}
 
 bool Translucency::RenderFrameAgain(const oit::MethodInfo& method) {
   if (frame_ == 0) return error_ = "RenderFrameAgain before the first frame", false;

@@ -407,6 +407,26 @@ TEST_F(FragmentStorageTest, CursorsEndEqualToCountsAndOffsetsScanThem) {
 // The smallest pool, one node a pixel, on 3000 shards, which need more: the
 // method reports exactly how many fragments it could not store (the recorded
 // count of the frame's fragments minus the pool), a frame or two late.
+// The hysteresis sizing that redraws: the smoke grows past 1.5x its first frame's
+// fragments, so some frames do not fit the buffer their fill had and are drawn again;
+// every frame then equals the exactly sized one, bit for bit, and nothing is lost.
+TEST_F(FragmentStorageTest, GrowAndRedrawDrawsAgainWhatDidNotFitAndEqualsExactSizing) {
+  const MethodInfo& prefixSum = *renderer::oit::FindMethod("prefix-sum");
+  TranslucencySettings exact = Settings("smoke"), redraw = exact;
+  redraw.fragmentStorage.sizing = renderer::oit::FragmentSizing::GrowAndRedraw;
+  auto a = Make(exact), b = Make(redraw);
+  ASSERT_TRUE(a && b);
+  for (int frame = 0; frame < 20; ++frame) {
+    ASSERT_TRUE(a->RenderFrame(prefixSum)) << a->error();
+    ASSERT_TRUE(b->RenderFrame(prefixSum)) << b->error();
+    ASSERT_EQ(a->ReadFrame(), b->ReadFrame()) << "frame " << frame;
+    EXPECT_EQ(b->MethodInstance(prefixSum)->LostFragments(), 0u) << "frame " << frame;
+  }
+  EXPECT_GT(b->redrawnFrames(), 0u);
+  EXPECT_LT(b->redrawnFrames(), 10u) << "the hysteresis keeps most frames from redrawing";
+  EXPECT_EQ(a->redrawnFrames(), 0u);
+}
+
 TEST_F(FragmentStorageTest, ALinkedListPoolTooSmallReportsTheFragmentsItLost) {
   TranslucencySettings s = Settings("shards");
   s.shardCount = 3000;

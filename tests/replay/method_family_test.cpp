@@ -21,9 +21,10 @@ using renderer::oit::MethodInfo;
 
 class MethodFamilyTest : public GpuTest {
  protected:
-  std::unique_ptr<Translucency> Make(const char* scene, rhi::DeviceContext* ctx = nullptr, bool exactSizing = true) {
+  std::unique_ptr<Translucency> Make(const char* scene, rhi::DeviceContext* ctx = nullptr,
+                                    renderer::oit::FragmentSizing sizing = renderer::oit::FragmentSizing::Exact) {
     TranslucencySettings s;
-    s.fragmentStorage.exactSizing = exactSizing;
+    s.fragmentStorage.sizing = sizing;
     s.scene = scene;
     s.width = 40, s.height = 24;
     s.rule = {4, 2, 5, 5};
@@ -155,7 +156,7 @@ TEST_F(MethodFamilyTest, MethodsReportTheMemoryOfTheirTargets) {
 // late, 1.5x it (the first frame has no earlier total: it is read back and grown).
 TEST_F(MethodFamilyTest, PrefixSumReportsItsFragmentBufferAndPerPixelBuffers) {
   for (const bool exact : {true, false}) {
-    auto t = Make("shards", nullptr, exact);
+    auto t = Make("shards", nullptr, exact ? renderer::oit::FragmentSizing::Exact : renderer::oit::FragmentSizing::Late);
     ASSERT_TRUE(t);
     const MethodInfo& method = *renderer::oit::FindMethod("prefix-sum");
     ASSERT_TRUE(t->RenderFrame(method)) << t->error();

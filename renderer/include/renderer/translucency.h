@@ -103,6 +103,9 @@ class Translucency {
   // RenderFrame). False (and error()) before the first frame or when the method
   // cannot be made.
   bool RenderFrameAgain(const oit::MethodInfo& method);
+  // The frames RenderFrame drew twice because the method's storage was too small the
+  // first time (Method::FrameNeedsRedraw).
+  uint64_t redrawnFrames() const { return redrawnFrames_; }
   const std::string& error() const { return error_; }
 
   // The frame as tightly packed RGBA8 rows.
@@ -147,6 +150,7 @@ class Translucency {
   const SceneInfo* scene_ = nullptr;
   uint32_t frame_ = 0;
   bool lastUpdateCounted_ = false;
+  uint64_t redrawnFrames_ = 0;
   Camera camera_;
   std::optional<Camera> cameraOverride_;
   std::string error_;

@@ -4,7 +4,7 @@
 // offset, and resolve: sort, shade (deferred), composite.
 //
 // Sizing the fragment buffer. The document sizes it to the frame's total, which
-// the CPU only has after reading it back: FragmentStorage::exactSizing (the
+// the CPU only has after reading it back: FragmentSizing::Exact (the
 // default) does that each frame (the CPU waits for the count and scan to finish,
 // so CPU and GPU work in turn every frame). The other sizing reads the totals
 // back without waiting (LateReadback, a frame or so late) and keeps a capacity
@@ -53,7 +53,7 @@ class PrefixSumMethod final : public Method {
  public:
   bool Initialize(const MethodInfo& info, const MethodSetup& setup, std::string* error) {
     device_ = setup.device;
-    exact_ = setup.fragmentStorage.exactSizing;
+    sizing_ = setup.fragmentStorage.sizing;
     width_ = setup.frame.width;
     pixels_ = setup.frame.width * setup.frame.height;
     if (!counts_.CreateRaw(device_, pixels_) || !cursors_.CreateRaw(device_, pixels_) ||
@@ -130,6 +130,18 @@ class PrefixSumMethod final : public Method {
   }
   const std::vector<std::string>& PassNames() const override { return passNames_; }
   OpaqueShading Opaque() const override { return OpaqueShading::VisibilityBuffer; }
+
+  // GrowAndRedraw: the frame's total, now that all of its passes are recorded; too
+  // large for the buffer it filled, the capacity grows (Arrived) and the frame is
+  // drawn again, so nothing is lost.
+  bool FrameNeedsRedraw(rhi::DeviceContext* ctx) override {
+    if (sizing_ != FragmentSizing::GrowAndRedraw) return false;
+    const uint64_t filled = capacity_;
+    const uint32_t total = readback_.ReadNow(ctx, total_.buffer.Get());
+    Arrived(total, filled);
+    lost_ = 0;
+    return total > filled;
+  }
   uint64_t LostFragments() const override { return lost_; }
 
  private:
@@ -138,9 +150,10 @@ class PrefixSumMethod final : public Method {
   // exactly.
   void SizeFragmentBuffer(rhi::DeviceContext* ctx) {
     uint64_t wanted = 0;
-    if (exact_ || !seenTotal_) {
+    const bool exact = sizing_ == FragmentSizing::Exact;
+    if (exact || !seenTotal_) {
       const uint32_t total = readback_.ReadNow(ctx, total_.buffer.Get());
-      wanted = exact_ ? total : total + total / 2;
+      wanted = exact ? total : total + total / 2;
       demand_ = wanted;
       seenTotal_ = true;
     } else {
@@ -151,7 +164,7 @@ class PrefixSumMethod final : public Method {
       fragments_ = {};
       fragments_.CreateStructured(device_, uint32_t(std::max<uint64_t>(capacity_, 1)), kFragmentBytes, false);
     }
-    if (!exact_) readback_.Issue(ctx, total_.buffer.Get(), capacity_);
+    if (sizing_ == FragmentSizing::Late) readback_.Issue(ctx, total_.buffer.Get(), capacity_);
   }
 
   // A total read back a frame or more late, with the capacity its frame had.
@@ -174,7 +187,7 @@ class PrefixSumMethod final : public Method {
   }
 
   rhi::Device* device_ = nullptr;
-  bool exact_ = false;
+  FragmentSizing sizing_ = FragmentSizing::Exact;
   uint32_t width_ = 0, pixels_ = 0;
   ViewedBuffer counts_, cursors_, offsets_, total_, fragments_;
   std::unique_ptr<PrefixScan> scan_;

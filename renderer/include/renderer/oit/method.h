@@ -146,6 +146,10 @@ class Method {
   // frame counts (PassTimes::fragmentPassInvocations): the first for most methods; a
   // later one where the method first draws the opaque objects into targets of its own.
   virtual size_t FragmentPass() const { return 0; }
+  // After Render: true when the frame it drew is incomplete and the method has grown
+  // its storage so that drawing the same frame again completes it (prefix-sum with
+  // FragmentSizing::GrowAndRedraw, which waits here for the frame's total).
+  virtual bool FrameNeedsRedraw(rhi::DeviceContext* /*context*/) { return false; }
   // How the opaque objects reach the frame before Render.
   virtual OpaqueShading Opaque() const { return OpaqueShading::Forward; }
 
@@ -166,15 +170,26 @@ struct MethodInfo;
 
 // The layers the peeling methods keep unless told otherwise.
 inline constexpr uint32_t kDefaultPeelLayers = 8;
+// How prefix-sum sizes its fragment buffer to the frame's total, which only the GPU
+// has (document 004 step 3) until the CPU reads it back.
+enum class FragmentSizing {
+  // The default, document 004's way: to each frame's own total, read back in the frame.
+  // The CPU waits for the count and scan, and the GPU idles until the CPU has recorded
+  // the fill (1.6-3.5 ms a frame on an H200 at 1920x1080). Exact and deterministic.
+  Exact,
+  // From earlier frames' totals, read back a frame late without waiting, grown with
+  // hysteresis (1.5x a total that exceeded it). A frame whose total outgrows the
+  // buffer loses fragments (counted in LostFragments; which ones is a race).
+  Late,
+  // The same hysteresis, but the frame's total is read back after its last pass (a
+  // wait at the end of the frame, not in its middle), and a frame that did not fit is
+  // drawn again with the buffer grown (Method::FrameNeedsRedraw). Exact.
+  GrowAndRedraw,
+};
+
 // How the fragment-buffer methods (prefix-sum, linked-list) size their storage.
 struct FragmentStorage {
-  // prefix-sum: true (the default, document 004's way) sizes the fragment buffer to
-  // each frame's own total, read back in the frame (the CPU waits for the count and
-  // scan): exact, and deterministic. false sizes it from earlier frames' totals, read
-  // back a frame late without waiting and grown with hysteresis: a frame whose total
-  // outgrows the buffer loses fragments (counted in LostFragments), and which ones
-  // depends on the GPU's scheduling.
-  bool exactSizing = true;
+  FragmentSizing sizing = FragmentSizing::Exact;  // prefix-sum
   // linked-list: the node pool's capacity, in nodes per pixel of the frame.
   uint32_t nodesPerPixel = 16;
 };

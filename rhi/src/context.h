@@ -58,6 +58,26 @@ class ContextImpl final : public DeviceContext {
                           const UINT* pOffsets) override;
   void IASetIndexBuffer(Buffer* pIndexBuffer, DXGI_FORMAT Format, UINT Offset) override;
   void IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY Topology) override;
+  // The getters (context_getters.cpp).
+  void IAGetInputLayout(InputLayout** ppInputLayout) override;
+  void IAGetVertexBuffers(UINT StartSlot, UINT NumBuffers, Buffer** ppVertexBuffers, UINT* pStrides,
+                          UINT* pOffsets) override;
+  void IAGetIndexBuffer(Buffer** pIndexBuffer, DXGI_FORMAT* Format, UINT* Offset) override;
+  void IAGetPrimitiveTopology(PRIMITIVE_TOPOLOGY* pTopology) override;
+  void VSGetShader(VertexShader** ppShader, ClassInstance** ppClassInstances, UINT* pNumClassInstances) override;
+  void HSGetShader(HullShader** ppShader, ClassInstance** ppClassInstances, UINT* pNumClassInstances) override;
+  void DSGetShader(DomainShader** ppShader, ClassInstance** ppClassInstances, UINT* pNumClassInstances) override;
+  void GSGetShader(GeometryShader** ppShader, ClassInstance** ppClassInstances, UINT* pNumClassInstances) override;
+  void PSGetShader(PixelShader** ppShader, ClassInstance** ppClassInstances, UINT* pNumClassInstances) override;
+  void CSGetShader(ComputeShader** ppShader, ClassInstance** ppClassInstances, UINT* pNumClassInstances) override;
+  void CSGetUnorderedAccessViews(UINT StartSlot, UINT NumUAVs, UnorderedAccessView** ppUnorderedAccessViews) override;
+  void RSGetState(RasterizerState** ppRasterizerState) override;
+  void RSGetViewports(UINT* pNumViewports, VIEWPORT* pViewports) override;
+  void RSGetScissorRects(UINT* pNumRects, RECT* pRects) override;
+  void OMGetRenderTargets(UINT NumViews, RenderTargetView** ppRenderTargetViews,
+                          DepthStencilView** ppDepthStencilView) override;
+  void OMGetBlendState(BlendState** ppBlendState, FLOAT BlendFactor[4], UINT* pSampleMask) override;
+  void OMGetDepthStencilState(DepthStencilState** ppDepthStencilState, UINT* pStencilRef) override;
 
   void VSSetShader(VertexShader* pShader, ClassInstance* const*, UINT) override;
   void HSSetShader(HullShader* pShader, ClassInstance* const*, UINT) override;
@@ -75,6 +95,15 @@ class ContextImpl final : public DeviceContext {
   }                                                                                                       \
   void Prefix##SetSamplers(UINT StartSlot, UINT NumSamplers, SamplerState* const* ppSamplers) override {  \
     SetSamplers(ShaderStage::Stage, StartSlot, NumSamplers, ppSamplers);                                 \
+  }                                                                                                       \
+  void Prefix##GetConstantBuffers(UINT StartSlot, UINT NumBuffers, Buffer** ppBuffers) override {         \
+    GetConstantBuffers(ShaderStage::Stage, StartSlot, NumBuffers, ppBuffers);                            \
+  }                                                                                                       \
+  void Prefix##GetShaderResources(UINT StartSlot, UINT NumViews, ShaderResourceView** ppViews) override { \
+    GetShaderResources(ShaderStage::Stage, StartSlot, NumViews, ppViews);                                \
+  }                                                                                                       \
+  void Prefix##GetSamplers(UINT StartSlot, UINT NumSamplers, SamplerState** ppSamplers) override {        \
+    GetSamplers(ShaderStage::Stage, StartSlot, NumSamplers, ppSamplers);                                 \
   }
   RHI_STAGE_BINDINGS(VS, Vertex)
   RHI_STAGE_BINDINGS(HS, Hull)
@@ -196,6 +225,9 @@ class ContextImpl final : public DeviceContext {
   void SetConstantBuffers(ShaderStage stage, UINT start, UINT count, Buffer* const* buffers);
   void SetShaderResources(ShaderStage stage, UINT start, UINT count, ShaderResourceView* const* views);
   void SetSamplers(ShaderStage stage, UINT start, UINT count, SamplerState* const* samplers);
+  void GetConstantBuffers(ShaderStage stage, UINT start, UINT count, Buffer** buffers);
+  void GetShaderResources(ShaderStage stage, UINT start, UINT count, ShaderResourceView** views);
+  void GetSamplers(ShaderStage stage, UINT start, UINT count, SamplerState** samplers);
   void EmitBarriers();
   // ResolveSubresource as `format` where an image stores another member of its
   // typeless family: a rendering instance with a resolve attachment.

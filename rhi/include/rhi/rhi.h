@@ -187,6 +187,11 @@ class DeviceContext : public DeviceChild {
                                   const UINT* pStrides, const UINT* pOffsets) = 0;
   virtual void IASetIndexBuffer(Buffer* pIndexBuffer, DXGI_FORMAT Format, UINT Offset) = 0;
   virtual void IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY Topology) = 0;
+  virtual void IAGetInputLayout(InputLayout** ppInputLayout) = 0;
+  virtual void IAGetVertexBuffers(UINT StartSlot, UINT NumBuffers, Buffer** ppVertexBuffers, UINT* pStrides,
+                                  UINT* pOffsets) = 0;
+  virtual void IAGetIndexBuffer(Buffer** pIndexBuffer, DXGI_FORMAT* Format, UINT* Offset) = 0;
+  virtual void IAGetPrimitiveTopology(PRIMITIVE_TOPOLOGY* pTopology) = 0;
 
   // Shader stages
   virtual void VSSetShader(VertexShader* pShader, ClassInstance* const* ppClassInstances, UINT NumClassInstances) = 0;
@@ -195,12 +200,25 @@ class DeviceContext : public DeviceChild {
   virtual void GSSetShader(GeometryShader* pShader, ClassInstance* const* ppClassInstances, UINT NumClassInstances) = 0;
   virtual void PSSetShader(PixelShader* pShader, ClassInstance* const* ppClassInstances, UINT NumClassInstances) = 0;
   virtual void CSSetShader(ComputeShader* pShader, ClassInstance* const* ppClassInstances, UINT NumClassInstances) = 0;
+  // pNumClassInstances (if not null) is set to 0: there are no class instances.
+  virtual void VSGetShader(VertexShader** ppShader, ClassInstance** ppClassInstances, UINT* pNumClassInstances) = 0;
+  virtual void HSGetShader(HullShader** ppShader, ClassInstance** ppClassInstances, UINT* pNumClassInstances) = 0;
+  virtual void DSGetShader(DomainShader** ppShader, ClassInstance** ppClassInstances, UINT* pNumClassInstances) = 0;
+  virtual void GSGetShader(GeometryShader** ppShader, ClassInstance** ppClassInstances, UINT* pNumClassInstances) = 0;
+  virtual void PSGetShader(PixelShader** ppShader, ClassInstance** ppClassInstances, UINT* pNumClassInstances) = 0;
+  virtual void CSGetShader(ComputeShader** ppShader, ClassInstance** ppClassInstances, UINT* pNumClassInstances) = 0;
 
 #define RHI_DECLARE_STAGE_BINDINGS(Prefix)                                                                 \
   virtual void Prefix##SetConstantBuffers(UINT StartSlot, UINT NumBuffers, Buffer* const* ppConstantBuffers) = 0; \
   virtual void Prefix##SetShaderResources(UINT StartSlot, UINT NumViews,                                  \
                                           ShaderResourceView* const* ppShaderResourceViews) = 0;          \
-  virtual void Prefix##SetSamplers(UINT StartSlot, UINT NumSamplers, SamplerState* const* ppSamplers) = 0;
+  virtual void Prefix##SetSamplers(UINT StartSlot, UINT NumSamplers, SamplerState* const* ppSamplers) = 0; \
+  virtual void Prefix##GetConstantBuffers(UINT StartSlot, UINT NumBuffers, Buffer** ppConstantBuffers) = 0;      \
+  virtual void Prefix##GetShaderResources(UINT StartSlot, UINT NumViews,                                  \
+                                          ShaderResourceView** ppShaderResourceViews) = 0;                \
+  virtual void Prefix##GetSamplers(UINT StartSlot, UINT NumSamplers, SamplerState** ppSamplers) = 0;
+  // The getters return what the setters bound, each object with a reference the
+  // caller releases (null for an empty slot), as D3D11's do.
   RHI_DECLARE_STAGE_BINDINGS(VS)
   RHI_DECLARE_STAGE_BINDINGS(HS)
   RHI_DECLARE_STAGE_BINDINGS(DS)
@@ -211,6 +229,7 @@ class DeviceContext : public DeviceChild {
   virtual void CSSetUnorderedAccessViews(UINT StartSlot, UINT NumUAVs,
                                          UnorderedAccessView* const* ppUnorderedAccessViews,
                                          const UINT* pUAVInitialCounts) = 0;
+  virtual void CSGetUnorderedAccessViews(UINT StartSlot, UINT NumUAVs, UnorderedAccessView** ppUnorderedAccessViews) = 0;
 
   // Stream output
   virtual void SOSetTargets(UINT NumBuffers, Buffer* const* ppSOTargets, const UINT* pOffsets) = 0;
@@ -220,6 +239,11 @@ class DeviceContext : public DeviceChild {
   virtual void RSSetState(RasterizerState* pRasterizerState) = 0;
   virtual void RSSetViewports(UINT NumViewports, const VIEWPORT* pViewports) = 0;
   virtual void RSSetScissorRects(UINT NumRects, const RECT* pRects) = 0;
+  virtual void RSGetState(RasterizerState** ppRasterizerState) = 0;
+  // With pViewports null, *pNumViewports receives the bound count; else
+  // *pNumViewports are written, zeros past the bound ones. RSGetScissorRects likewise.
+  virtual void RSGetViewports(UINT* pNumViewports, VIEWPORT* pViewports) = 0;
+  virtual void RSGetScissorRects(UINT* pNumRects, RECT* pRects) = 0;
 
   // Output merger
   virtual void OMSetRenderTargets(UINT NumViews, RenderTargetView* const* ppRenderTargetViews,
@@ -240,6 +264,10 @@ class DeviceContext : public DeviceChild {
                                                          UnorderedAccessView** ppUnorderedAccessViews) = 0;
   virtual void OMSetBlendState(BlendState* pBlendState, const FLOAT BlendFactor[4], UINT SampleMask) = 0;
   virtual void OMSetDepthStencilState(DepthStencilState* pDepthStencilState, UINT StencilRef) = 0;
+  virtual void OMGetRenderTargets(UINT NumViews, RenderTargetView** ppRenderTargetViews,
+                                  DepthStencilView** ppDepthStencilView) = 0;
+  virtual void OMGetBlendState(BlendState** ppBlendState, FLOAT BlendFactor[4], UINT* pSampleMask) = 0;
+  virtual void OMGetDepthStencilState(DepthStencilState** ppDepthStencilState, UINT* pStencilRef) = 0;
 
   // Draws and dispatches
   virtual void Draw(UINT VertexCount, UINT StartVertexLocation) = 0;

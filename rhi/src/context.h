@@ -163,6 +163,7 @@ class ContextImpl final : public DeviceContext {
   void ResolveSubresource(Resource* pDstResource, UINT DstSubresource, Resource* pSrcResource,
                           UINT SrcSubresource, DXGI_FORMAT Format) override;
   void CopyStructureCount(Buffer* pDstBuffer, UINT DstAlignedByteOffset, UnorderedAccessView* pSrcView) override;
+  void GenerateMips(ShaderResourceView* pShaderResourceView) override;  // texture_misc.cpp
 
   void Begin(Asynchronous* pAsync) override;
   void End(Asynchronous* pAsync) override;

@@ -270,6 +270,11 @@ class TracingContext final : public DeviceContext {
     inner_->SetMarker(name);
   }
 
+  void GenerateMips(ShaderResourceView* v) override {
+    Record("GenerateMips", Obj(v));
+    inner_->GenerateMips(v);
+  }
+
   // Getters change nothing: forwarded, not recorded.
   void IAGetInputLayout(InputLayout** l) override { inner_->IAGetInputLayout(l); }
   void IAGetVertexBuffers(UINT start, UINT n, Buffer** b, UINT* strides, UINT* offsets) override {

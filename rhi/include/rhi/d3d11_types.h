@@ -513,6 +513,7 @@ struct TEX2D_ARRAY_SRV { UINT MostDetailedMip; UINT MipLevels; UINT FirstArraySl
 struct TEX2DMS_SRV { UINT UnusedField_NothingToDefine; };
 struct TEX2DMS_ARRAY_SRV { UINT FirstArraySlice; UINT ArraySize; };
 struct TEXCUBE_SRV { UINT MostDetailedMip; UINT MipLevels; };
+struct TEXCUBE_ARRAY_SRV { UINT MostDetailedMip; UINT MipLevels; UINT First2DArrayFace; UINT NumCubes; };
 
 struct SHADER_RESOURCE_VIEW_DESC {
   DXGI_FORMAT Format;
@@ -526,6 +527,7 @@ struct SHADER_RESOURCE_VIEW_DESC {
     TEX2DMS_SRV Texture2DMS;
     TEX2DMS_ARRAY_SRV Texture2DMSArray;
     TEXCUBE_SRV TextureCube;
+    TEXCUBE_ARRAY_SRV TextureCubeArray;
     BUFFEREX_SRV BufferEx;
   };
 };

@@ -303,6 +303,9 @@ class DeviceContext : public DeviceChild {
   // Writes the hidden counter of an append/counter UAV as a UINT at DstAlignedByteOffset.
   virtual void CopyStructureCount(Buffer* pDstBuffer, UINT DstAlignedByteOffset,
                                   UnorderedAccessView* pSrcView) = 0;
+  // Fills the view's mip levels below its most detailed one, each the 2x2 box
+  // filter of the level above; the resource needs RESOURCE_MISC_GENERATE_MIPS.
+  virtual void GenerateMips(ShaderResourceView* pShaderResourceView) = 0;
 
   // Queries
   virtual void Begin(Asynchronous* pAsync) = 0;

@@ -171,6 +171,8 @@ class ContextImpl final : public DeviceContext {
 
   void ClearState() override;
   void Flush() override;
+  DEVICE_CONTEXT_TYPE GetType() override { return DEVICE_CONTEXT_IMMEDIATE; }
+  UINT GetContextFlags() override { return 0; }
   // Debug-utils labels (context_annotations.cpp).
   void BeginEvent(const char* name) override;
   void EndEvent() override;

@@ -62,6 +62,21 @@ class DeviceImpl final : public Device {
   HRESULT CreateQuery(const QUERY_DESC* pQueryDesc, Query** ppQuery) override;
   HRESULT CheckMultisampleQualityLevels(DXGI_FORMAT Format, UINT SampleCount, UINT* pNumQualityLevels) override;
   void GetImmediateContext(DeviceContext** ppImmediateContext) override;
+  // device_queries.cpp
+  D3D_FEATURE_LEVEL GetFeatureLevel() override { return D3D_FEATURE_LEVEL_11_0; }
+  UINT GetCreationFlags() override;
+  HRESULT GetDeviceRemovedReason() override;
+  HRESULT SetExceptionMode(UINT RaiseFlags) override;
+  UINT GetExceptionMode() override { return exceptionMode_; }
+  HRESULT CheckFormatSupport(DXGI_FORMAT Format, UINT* pFormatSupport) override;
+  HRESULT CheckFeatureSupport(FEATURE Feature, void* pFeatureSupportData, UINT FeatureSupportDataSize) override;
+  HRESULT CreateClassLinkage(ClassLinkage** ppLinkage) override;
+  void CheckCounterInfo(COUNTER_INFO* pCounterInfo) override;
+  HRESULT CreateCounter(const COUNTER_DESC* pCounterDesc, Counter** ppCounter) override;
+  HRESULT CheckCounter(const COUNTER_DESC* pDesc, COUNTER_TYPE* pType, UINT* pActiveCounters, LPSTR szName,
+                       UINT* pNameLength, LPSTR szUnits, UINT* pUnitsLength, LPSTR szDescription,
+                       UINT* pDescriptionLength) override;
+  HRESULT OpenSharedResource(HANDLE hResource, REFIID ReturnedInterface, void** ppResource) override;
   const char* GetAdapterName() override { return gpu_->AdapterName().c_str(); }
 
   Gpu& gpu() { return *gpu_; }
@@ -83,6 +98,7 @@ class DeviceImpl final : public Device {
   std::unique_ptr<PipelineCache> pipelines_;
   std::unique_ptr<ContextImpl> context_;
   uint64_t objectSerial_ = 0;
+  UINT exceptionMode_ = 0;  // SetExceptionMode
   // D3D11 returns the existing object for a desc equal to an earlier one once
   // normalised. Keyed by states::KeyHash; values are weak.
   std::unordered_multimap<uint64_t, DeviceChild*> stateCache_;

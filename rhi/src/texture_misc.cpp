@@ -11,6 +11,8 @@
 namespace rhi::vk {
 
 std::string CheckMiscFlags(const TextureShape& s, const std::string& where) {
+  if (s.miscFlags & RESOURCE_MISC_SHARED)
+    return where + "RESOURCE_MISC_SHARED is not supported: no resource is shared across devices or processes";
   if (s.miscFlags & RESOURCE_MISC_TEXTURECUBE) {
     if (s.dimension != RESOURCE_DIMENSION_TEXTURE2D) return where + "RESOURCE_MISC_TEXTURECUBE needs a 2D texture";
     if (s.arraySize % 6 != 0)

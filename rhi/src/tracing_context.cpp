@@ -276,6 +276,8 @@ class TracingContext final : public DeviceContext {
   }
 
   // Getters change nothing: forwarded, not recorded.
+  DEVICE_CONTEXT_TYPE GetType() override { return inner_->GetType(); }
+  UINT GetContextFlags() override { return inner_->GetContextFlags(); }
   void IAGetInputLayout(InputLayout** l) override { inner_->IAGetInputLayout(l); }
   void IAGetVertexBuffers(UINT start, UINT n, Buffer** b, UINT* strides, UINT* offsets) override {
     inner_->IAGetVertexBuffers(start, n, b, strides, offsets);

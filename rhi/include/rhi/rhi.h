@@ -176,6 +176,12 @@ class Query : public Asynchronous {
   virtual void GetDesc(QUERY_DESC* pDesc) = 0;
 };
 
+// No counter can be created (CheckCounterInfo reports none); the type exists for CreateCounter's signature.
+class Counter : public Asynchronous {
+ public:
+  virtual void GetDesc(COUNTER_DESC* pDesc) = 0;
+};
+
 // ---------------------------------------------------------------------------
 // The immediate context
 
@@ -314,6 +320,9 @@ class DeviceContext : public DeviceChild {
 
   virtual void ClearState() = 0;
   virtual void Flush() = 0;
+  // DEVICE_CONTEXT_IMMEDIATE; no context flags (D3D11 defines none for 11.0).
+  virtual DEVICE_CONTEXT_TYPE GetType() = 0;
+  virtual UINT GetContextFlags() = 0;
 
   // ID3DUserDefinedAnnotation: named regions and markers for debuggers and traces
   // (rhi/trace.h). The Vulkan context emits debug-utils labels when
@@ -388,6 +397,41 @@ class Device : public Unknown {
   virtual HRESULT CheckMultisampleQualityLevels(DXGI_FORMAT Format, UINT SampleCount, UINT* pNumQualityLevels) = 0;
 
   virtual void GetImmediateContext(DeviceContext** ppImmediateContext) = 0;
+
+  // Queries of the device (device_queries.cpp).
+  // Feature level 11_0, on every Vulkan 1.3 device the backend accepts.
+  virtual D3D_FEATURE_LEVEL GetFeatureLevel() = 0;
+  // CREATE_DEVICE_DEBUG when DEVICE_OPTIONS::EnableValidation (the debug layer's counterpart) is on.
+  virtual UINT GetCreationFlags() = 0;
+  // S_OK, or DXGI_ERROR_DEVICE_REMOVED once Vulkan reported VK_ERROR_DEVICE_LOST
+  // (waits then return instead of hanging).
+  virtual HRESULT GetDeviceRemovedReason() = 0;
+  // RaiseFlags: 0 or RAISE_FLAG_DRIVER_INTERNAL_ERROR, kept and returned; no
+  // exception is ever raised (device loss goes through GetDeviceRemovedReason).
+  virtual HRESULT SetExceptionMode(UINT RaiseFlags) = 0;
+  virtual UINT GetExceptionMode() = 0;
+  // FORMAT_SUPPORT_* bits D3D11 defines for Format that this device has; E_FAIL
+  // (and 0) for a format it cannot use at all.
+  virtual HRESULT CheckFormatSupport(DXGI_FORMAT Format, UINT* pFormatSupport) = 0;
+  // FEATURE_THREADING, _DOUBLES, _FORMAT_SUPPORT, _FORMAT_SUPPORT2 and
+  // _D3D10_X_HARDWARE_OPTIONS; E_INVALIDARG for another feature or a size that
+  // is not its struct's.
+  virtual HRESULT CheckFeatureSupport(FEATURE Feature, void* pFeatureSupportData, UINT FeatureSupportDataSize) = 0;
+
+  // What Vulkan cannot provide: these exist and refuse (device_queries.cpp).
+  // Dynamic shader linkage has no SPIR-V counterpart: E_NOTIMPL.
+  virtual HRESULT CreateClassLinkage(ClassLinkage** ppLinkage) = 0;
+  // No device-dependent counters: CheckCounterInfo reports none, CreateCounter
+  // returns DXGI_ERROR_UNSUPPORTED and CheckCounter E_INVALIDARG, as D3D11 does
+  // for a counter the device lacks.
+  virtual void CheckCounterInfo(COUNTER_INFO* pCounterInfo) = 0;
+  virtual HRESULT CreateCounter(const COUNTER_DESC* pCounterDesc, Counter** ppCounter) = 0;
+  virtual HRESULT CheckCounter(const COUNTER_DESC* pDesc, COUNTER_TYPE* pType, UINT* pActiveCounters, LPSTR szName,
+                               UINT* pNameLength, LPSTR szUnits, UINT* pUnitsLength, LPSTR szDescription,
+                               UINT* pDescriptionLength) = 0;
+  // No resource is shared across processes (RESOURCE_MISC_SHARED is not
+  // accepted), so no handle names one: E_INVALIDARG, as for a bad handle.
+  virtual HRESULT OpenSharedResource(HANDLE hResource, REFIID ReturnedInterface, void** ppResource) = 0;
 
   // Not in D3D11: the Vulkan physical device's name ("llvmpipe (LLVM 15.0.6, 256 bits)").
   virtual const char* GetAdapterName() = 0;

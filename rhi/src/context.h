@@ -168,6 +168,9 @@ class ContextImpl final : public DeviceContext {
   void Begin(Asynchronous* pAsync) override;
   void End(Asynchronous* pAsync) override;
   HRESULT GetData(Asynchronous* pAsync, void* pData, UINT DataSize, UINT GetDataFlags) override;
+  // predication.cpp
+  void SetPredication(Predicate* pPredicate, BOOL PredicateValue) override;
+  void GetPredication(Predicate** ppPredicate, BOOL* pPredicateValue) override;
 
   void ClearState() override;
   void Flush() override;
@@ -356,6 +359,11 @@ class ContextImpl final : public DeviceContext {
   bool descriptorsDirty_ = true;
   bool vertexBuffersDirty_ = true;
   std::unique_ptr<QueryTracker> queries_;
+  // SetPredication: the predicate, its value, and whether its result equals
+  // the value, so that predicated calls are skipped.
+  Bound<QueryImpl> predicate_;
+  BOOL predicateValue_ = FALSE;
+  bool predicationSkips_ = false;
 };
 
 }  // namespace rhi::vk

@@ -60,6 +60,7 @@ class DeviceImpl final : public Device {
                                 RasterizerState** ppRasterizerState) override;
   HRESULT CreateSamplerState(const SAMPLER_DESC* pSamplerDesc, SamplerState** ppSamplerState) override;
   HRESULT CreateQuery(const QUERY_DESC* pQueryDesc, Query** ppQuery) override;
+  HRESULT CreatePredicate(const QUERY_DESC* pPredicateDesc, Predicate** ppPredicate) override;  // predication.cpp
   HRESULT CheckMultisampleQualityLevels(DXGI_FORMAT Format, UINT SampleCount, UINT* pNumQualityLevels) override;
   void GetImmediateContext(DeviceContext** ppImmediateContext) override;
   // device_queries.cpp

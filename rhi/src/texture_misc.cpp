@@ -41,6 +41,7 @@ std::string CheckMipGenerationFormat(const Gpu& gpu, const TextureShape& shape, 
 }
 
 void ContextImpl::GenerateMips(ShaderResourceView* pShaderResourceView) {
+  if (predicationSkips_) return;
   auto* view = static_cast<ShaderResourceViewImpl*>(pShaderResourceView);
   TextureStorage* texture = view ? view->ViewTarget::texture() : nullptr;
   if (!texture || !(texture->shape().miscFlags & RESOURCE_MISC_GENERATE_MIPS)) {

@@ -275,6 +275,12 @@ class TracingContext final : public DeviceContext {
     inner_->GenerateMips(v);
   }
 
+  void SetPredication(Predicate* p, BOOL value) override {
+    Record("SetPredication", Format("%s, %d", Obj(p).c_str(), value));
+    inner_->SetPredication(p, value);
+  }
+  void GetPredication(Predicate** p, BOOL* value) override { inner_->GetPredication(p, value); }
+
   // Getters change nothing: forwarded, not recorded.
   DEVICE_CONTEXT_TYPE GetType() override { return inner_->GetType(); }
   UINT GetContextFlags() override { return inner_->GetContextFlags(); }

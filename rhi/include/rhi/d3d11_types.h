@@ -662,6 +662,8 @@ enum QUERY : UINT {
 };
 
 enum ASYNC_GETDATA_FLAG : UINT { ASYNC_GETDATA_DONOTFLUSH = 0x1 };
+// A predicate with the hint may let rendering go ahead while its result is not known.
+enum QUERY_MISC_FLAG : UINT { QUERY_MISC_PREDICATEHINT = 0x1 };
 
 struct QUERY_DESC {
   QUERY Query;

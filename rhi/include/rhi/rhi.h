@@ -176,6 +176,9 @@ class Query : public Asynchronous {
   virtual void GetDesc(QUERY_DESC* pDesc) = 0;
 };
 
+// A query whose BOOL result can predicate rendering (SetPredication).
+class Predicate : public Query {};
+
 // No counter can be created (CheckCounterInfo reports none); the type exists for CreateCounter's signature.
 class Counter : public Asynchronous {
  public:
@@ -317,6 +320,13 @@ class DeviceContext : public DeviceChild {
   virtual void Begin(Asynchronous* pAsync) = 0;
   virtual void End(Asynchronous* pAsync) = 0;
   virtual HRESULT GetData(Asynchronous* pAsync, void* pData, UINT DataSize, UINT GetDataFlags) = 0;
+  // While a predicate is set, Draw*, Dispatch*, Clear*, Copy*, UpdateSubresource,
+  // ResolveSubresource and GenerateMips are skipped when its result equals
+  // PredicateValue. The result is read when SetPredication is called, waiting
+  // for it unless the predicate has QUERY_MISC_PREDICATEHINT (then rendering
+  // goes ahead while it is unknown).
+  virtual void SetPredication(Predicate* pPredicate, BOOL PredicateValue) = 0;
+  virtual void GetPredication(Predicate** ppPredicate, BOOL* pPredicateValue) = 0;
 
   virtual void ClearState() = 0;
   virtual void Flush() = 0;
@@ -389,6 +399,8 @@ class Device : public Unknown {
   virtual HRESULT CreateSamplerState(const SAMPLER_DESC* pSamplerDesc, SamplerState** ppSamplerState) = 0;
 
   virtual HRESULT CreateQuery(const QUERY_DESC* pQueryDesc, Query** ppQuery) = 0;
+  // QUERY_OCCLUSION_PREDICATE or QUERY_SO_OVERFLOW_PREDICATE[_STREAMn].
+  virtual HRESULT CreatePredicate(const QUERY_DESC* pPredicateDesc, Predicate** ppPredicate) = 0;
 
   // *pNumQualityLevels: 1 when a render target (or depth-stencil, for depth
   // formats) of Format may have SampleCount samples, else 0 (D3D11's answer for

@@ -8,6 +8,7 @@
 
 #include "gpu.h"
 #include "host_slices.h"
+#include "private_data.h"
 #include "rhi/rhi.h"
 
 namespace rhi::vk {
@@ -78,6 +79,10 @@ class DeviceImpl final : public Device {
                        UINT* pNameLength, LPSTR szUnits, UINT* pUnitsLength, LPSTR szDescription,
                        UINT* pDescriptionLength) override;
   HRESULT OpenSharedResource(HANDLE hResource, REFIID ReturnedInterface, void** ppResource) override;
+  // private_data.cpp
+  HRESULT GetPrivateData(REFGUID guid, UINT* pDataSize, void* pData) override;
+  HRESULT SetPrivateData(REFGUID guid, UINT DataSize, const void* pData) override;
+  HRESULT SetPrivateDataInterface(REFGUID guid, const Unknown* pData) override;
   const char* GetAdapterName() override { return gpu_->AdapterName().c_str(); }
 
   Gpu& gpu() { return *gpu_; }
@@ -100,6 +105,7 @@ class DeviceImpl final : public Device {
   std::unique_ptr<ContextImpl> context_;
   uint64_t objectSerial_ = 0;
   UINT exceptionMode_ = 0;  // SetExceptionMode
+  PrivateDataStore privateData_;
   // D3D11 returns the existing object for a desc equal to an earlier one once
   // normalised. Keyed by states::KeyHash; values are weak.
   std::unordered_multimap<uint64_t, DeviceChild*> stateCache_;

@@ -58,6 +58,8 @@ class Gpu {
   bool Validating() const { return messenger_ != VK_NULL_HANDLE; }
   // Vulkan reported VK_ERROR_DEVICE_LOST: nothing more completes, and waits return at once.
   bool DeviceLost() const { return deviceLost_; }
+  // Names a Vulkan object for debuggers and validation messages (VK_EXT_debug_utils; private_data.cpp).
+  void SetObjectName(VkObjectType type, uint64_t handle, const std::string& name) const;
 
   // Reports a refusal or a validation message to the application.
   void Report(MESSAGE_CATEGORY category, MESSAGE_SEVERITY severity, const std::string& text) const;

@@ -198,5 +198,60 @@ TEST_F(DeviceApiTest, NoResourceIsSharedSoOpenSharedResourceAndMiscSharedAreRefu
   EXPECT_TRUE(RefusedWith("RESOURCE_MISC_SHARED is not supported"));
 }
 
+// A GUID of the application's own.
+constexpr GUID kAppGuid = {0x12345678, 0x1234, 0x5678, {1, 2, 3, 4, 5, 6, 7, 8}};
+
+TEST_F(DeviceApiTest, PrivateDataFollowsD3D11sSizeAndNotFoundRules) {
+  UINT size = 99;
+  EXPECT_EQ(device->GetPrivateData(kAppGuid, &size, nullptr), DXGI_ERROR_NOT_FOUND);
+  EXPECT_EQ(size, 0u);
+  const uint32_t value[2] = {7, 9};
+  ASSERT_EQ(device->SetPrivateData(kAppGuid, sizeof value, value), S_OK);
+  EXPECT_EQ(device->GetPrivateData(kAppGuid, &size, nullptr), S_OK);
+  EXPECT_EQ(size, sizeof value) << "a null pData asks for the size";
+  uint32_t small = 0;
+  size = sizeof small;
+  EXPECT_EQ(device->GetPrivateData(kAppGuid, &size, &small), DXGI_ERROR_MORE_DATA);
+  EXPECT_EQ(size, sizeof value);
+  uint32_t got[2] = {};
+  size = sizeof got;
+  ASSERT_EQ(device->GetPrivateData(kAppGuid, &size, got), S_OK);
+  EXPECT_EQ(got[0], 7u);
+  EXPECT_EQ(got[1], 9u);
+  // Null data removes the entry.
+  ASSERT_EQ(device->SetPrivateData(kAppGuid, 0, nullptr), S_OK);
+  EXPECT_EQ(device->GetPrivateData(kAppGuid, &size, nullptr), DXGI_ERROR_NOT_FOUND);
+}
+
+TEST_F(DeviceApiTest, PrivateDataInterfaceHoldsAReferenceAndGetAddRefs) {
+  ComPtr<Buffer> buffer = MakeBuffer(BIND_VERTEX_BUFFER, nullptr, 16);
+  auto references = [&] {
+    buffer->AddRef();
+    return buffer->Release();
+  };
+  const UINT before = references();
+  ASSERT_EQ(device->SetPrivateDataInterface(kAppGuid, buffer.Get()), S_OK);
+  EXPECT_EQ(references(), before + 1) << "the device holds a reference";
+  Unknown* got = nullptr;
+  UINT size = sizeof got;
+  ASSERT_EQ(device->GetPrivateData(kAppGuid, &size, &got), S_OK);
+  EXPECT_EQ(got, static_cast<Unknown*>(buffer.Get()));
+  EXPECT_EQ(references(), before + 2) << "GetPrivateData AddRefs the interface";
+  got->Release();
+  ASSERT_EQ(device->SetPrivateDataInterface(kAppGuid, nullptr), S_OK);
+  EXPECT_EQ(references(), before) << "removing the entry releases it";
+}
+
+TEST_F(DeviceApiTest, DebugObjectNameIsKeptAndNamesTheVulkanDevice) {
+  const std::string name = "port's device";
+  // Without the terminating null, as D3D11 samples pass it; the validation layer
+  // (on in this fixture) checks the vkSetDebugUtilsObjectNameEXT call.
+  ASSERT_EQ(device->SetPrivateData(WKPDID_D3DDebugObjectName, UINT(name.size()), name.data()), S_OK);
+  std::string got(name.size(), '\0');
+  UINT size = UINT(got.size());
+  ASSERT_EQ(device->GetPrivateData(WKPDID_D3DDebugObjectName, &size, got.data()), S_OK);
+  EXPECT_EQ(got, name);
+}
+
 }  // namespace
 }  // namespace rhi_test

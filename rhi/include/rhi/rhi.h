@@ -445,6 +445,12 @@ class Device : public Unknown {
   // accepted), so no handle names one: E_INVALIDARG, as for a bad handle.
   virtual HRESULT OpenSharedResource(HANDLE hResource, REFIID ReturnedInterface, void** ppResource) = 0;
 
+  // Private data (D3D11's semantics and HRESULTs). WKPDID_D3DDebugObjectName
+  // also names the VkDevice (VK_EXT_debug_utils, with the validation layer).
+  virtual HRESULT GetPrivateData(REFGUID guid, UINT* pDataSize, void* pData) = 0;
+  virtual HRESULT SetPrivateData(REFGUID guid, UINT DataSize, const void* pData) = 0;
+  virtual HRESULT SetPrivateDataInterface(REFGUID guid, const Unknown* pData) = 0;
+
   // Not in D3D11: the Vulkan physical device's name ("llvmpipe (LLVM 15.0.6, 256 bits)").
   virtual const char* GetAdapterName() = 0;
 };

@@ -176,6 +176,9 @@ class ContextImpl final : public DeviceContext {
   void Flush() override;
   DEVICE_CONTEXT_TYPE GetType() override { return DEVICE_CONTEXT_IMMEDIATE; }
   UINT GetContextFlags() override { return 0; }
+  // deferred_context.cpp
+  void ExecuteCommandList(CommandList* pCommandList, BOOL RestoreContextState) override;
+  HRESULT FinishCommandList(BOOL RestoreDeferredContextState, CommandList** ppCommandList) override;
   // Debug-utils labels (context_annotations.cpp).
   void BeginEvent(const char* name) override;
   void EndEvent() override;

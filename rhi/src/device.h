@@ -1,6 +1,7 @@
 // The D3D11 device over Vulkan, and the base of every device child.
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <string>
 #include <unordered_map>
@@ -64,6 +65,7 @@ class DeviceImpl final : public Device {
   HRESULT CreatePredicate(const QUERY_DESC* pPredicateDesc, Predicate** ppPredicate) override;  // predication.cpp
   HRESULT CheckMultisampleQualityLevels(DXGI_FORMAT Format, UINT SampleCount, UINT* pNumQualityLevels) override;
   void GetImmediateContext(DeviceContext** ppImmediateContext) override;
+  HRESULT CreateDeferredContext(UINT ContextFlags, DeviceContext** ppDeferredContext) override;  // deferred_context.cpp
   // device_queries.cpp
   D3D_FEATURE_LEVEL GetFeatureLevel() override { return D3D_FEATURE_LEVEL_11_0; }
   UINT GetCreationFlags() override;
@@ -103,7 +105,7 @@ class DeviceImpl final : public Device {
   std::unique_ptr<HostSliceAllocator> hostSlices_;
   std::unique_ptr<PipelineCache> pipelines_;
   std::unique_ptr<ContextImpl> context_;
-  uint64_t objectSerial_ = 0;
+  std::atomic<uint64_t> objectSerial_{0};  // deferred contexts create command lists on their threads
   UINT exceptionMode_ = 0;  // SetExceptionMode
   PrivateDataStore privateData_;
   // D3D11 returns the existing object for a desc equal to an earlier one once

@@ -281,6 +281,15 @@ class TracingContext final : public DeviceContext {
   }
   void GetPredication(Predicate** p, BOOL* value) override { inner_->GetPredication(p, value); }
 
+  void ExecuteCommandList(CommandList* list, BOOL restore) override {
+    Record("ExecuteCommandList", Format("%s, %d", Obj(list).c_str(), restore));
+    inner_->ExecuteCommandList(list, restore);
+  }
+  HRESULT FinishCommandList(BOOL restore, CommandList** list) override {
+    Record("FinishCommandList", Format("%d", restore));
+    return inner_->FinishCommandList(restore, list);
+  }
+
   // Getters change nothing: forwarded, not recorded.
   DEVICE_CONTEXT_TYPE GetType() override { return inner_->GetType(); }
   UINT GetContextFlags() override { return inner_->GetContextFlags(); }

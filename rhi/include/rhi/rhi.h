@@ -185,8 +185,15 @@ class Counter : public Asynchronous {
   virtual void GetDesc(COUNTER_DESC* pDesc) = 0;
 };
 
+// Commands recorded by a deferred context (FinishCommandList), run by the
+// immediate context's ExecuteCommandList as often as wanted.
+class CommandList : public DeviceChild {
+ public:
+  virtual UINT GetContextFlags() = 0;
+};
+
 // ---------------------------------------------------------------------------
-// The immediate context
+// The immediate context, and deferred contexts (CreateDeferredContext)
 
 class DeviceContext : public DeviceChild {
  public:
@@ -330,9 +337,19 @@ class DeviceContext : public DeviceChild {
 
   virtual void ClearState() = 0;
   virtual void Flush() = 0;
-  // DEVICE_CONTEXT_IMMEDIATE; no context flags (D3D11 defines none for 11.0).
+  // DEVICE_CONTEXT_IMMEDIATE or _DEFERRED; no context flags (D3D11 defines none for 11.0).
   virtual DEVICE_CONTEXT_TYPE GetType() = 0;
   virtual UINT GetContextFlags() = 0;
+
+  // Immediate context only: runs the list's commands from the default state (a
+  // list inherits nothing); afterwards the context's state is what it was
+  // before (RestoreContextState TRUE) or the default (FALSE, as ClearState).
+  virtual void ExecuteCommandList(CommandList* pCommandList, BOOL RestoreContextState) = 0;
+  // Deferred contexts only (DXGI_ERROR_INVALID_CALL on the immediate one): the
+  // commands recorded since the last call; the deferred context keeps its state
+  // for what it records next (RestoreDeferredContextState TRUE) or returns to
+  // the default state (FALSE).
+  virtual HRESULT FinishCommandList(BOOL RestoreDeferredContextState, CommandList** ppCommandList) = 0;
 
   // ID3DUserDefinedAnnotation: named regions and markers for debuggers and traces
   // (rhi/trace.h). The Vulkan context emits debug-utils labels when
@@ -409,6 +426,9 @@ class Device : public Unknown {
   virtual HRESULT CheckMultisampleQualityLevels(DXGI_FORMAT Format, UINT SampleCount, UINT* pNumQualityLevels) = 0;
 
   virtual void GetImmediateContext(DeviceContext** ppImmediateContext) = 0;
+  // A context that records into command lists, usable on another thread
+  // (deferred_context.cpp). ContextFlags must be 0.
+  virtual HRESULT CreateDeferredContext(UINT ContextFlags, DeviceContext** ppDeferredContext) = 0;
 
   // Queries of the device (device_queries.cpp).
   // Feature level 11_0, on every Vulkan 1.3 device the backend accepts.

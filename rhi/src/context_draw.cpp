@@ -130,6 +130,7 @@ void ContextImpl::BeginRendering() {
 
 const GraphicsPipeline* ContextImpl::PrepareDraw(const char* call, TrackedResource* indirect,
                                                  const Access& indirectUse) {
+  if (predicationSkips_) return nullptr;  // SetPredication
   if (!stages_[0].shader) {
     ReportDrawError(std::string(call) + ": no vertex shader is bound; the draw is skipped");
     return nullptr;
@@ -462,6 +463,7 @@ void ContextImpl::DrawIndexedInstancedIndirect(Buffer* pBufferForArgs, UINT Alig
 // Compute
 
 const ComputePipeline* ContextImpl::PrepareDispatch(const char* call) {
+  if (predicationSkips_) return nullptr;  // SetPredication
   const ShaderCode* shader = stages_[static_cast<uint32_t>(ShaderStage::Compute)].shader;
   if (!shader) {
     ReportDrawError(std::string(call) + ": no compute shader is bound; the dispatch is skipped");

@@ -457,6 +457,9 @@ void ContextImpl::ClearState() {
   sampleMask_ = DEFAULT_SAMPLE_MASK;
   depthStencilState_.Reset();
   stencilRef_ = 0;
+  predicate_.Reset();
+  predicateValue_ = FALSE;
+  predicationSkips_ = false;
   renderTargetsChanged_ = descriptorsDirty_ = vertexBuffersDirty_ = true;
   dynamicDirty_.All();
 }

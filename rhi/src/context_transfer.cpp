@@ -104,6 +104,7 @@ void ContextImpl::UploadTexture(TextureStorage& texture, UINT subresource, const
 
 void ContextImpl::UpdateSubresource(Resource* pDstResource, UINT DstSubresource, const BOX* pDstBox,
                                     const void* pSrcData, UINT SrcRowPitch, UINT SrcDepthPitch) {
+  if (predicationSkips_) return;
   if (BufferImpl* buffer = AsBuffer(pDstResource)) {
     if (buffer->desc().Usage != USAGE_DEFAULT) {
       ReportDrawError("UpdateSubresource: only USAGE_DEFAULT resources can be updated");
@@ -127,6 +128,7 @@ void ContextImpl::UpdateSubresource(Resource* pDstResource, UINT DstSubresource,
 // Clears
 
 void ContextImpl::ClearRenderTargetView(RenderTargetView* pRenderTargetView, const FLOAT ColorRGBA[4]) {
+  if (predicationSkips_) return;
   auto* view = static_cast<RenderTargetViewImpl*>(pRenderTargetView);
   TextureStorage& texture = view->texture();
   const auto* format = states::GetFormatInfo(view->format());
@@ -169,6 +171,7 @@ void ContextImpl::ClearRenderTargetView(RenderTargetView* pRenderTargetView, con
 
 void ContextImpl::ClearDepthStencilView(DepthStencilView* pDepthStencilView, UINT ClearFlags, FLOAT Depth,
                                         UINT8 Stencil) {
+  if (predicationSkips_) return;
   auto* view = static_cast<DepthStencilViewImpl*>(pDepthStencilView);
   TextureStorage& texture = view->texture();
   VkImageSubresourceRange range = view->range();
@@ -185,6 +188,7 @@ void ContextImpl::ClearDepthStencilView(DepthStencilView* pDepthStencilView, UIN
 }
 
 void ContextImpl::ClearUnorderedAccessViewUint(UnorderedAccessView* pUnorderedAccessView, const UINT Values[4]) {
+  if (predicationSkips_) return;
   auto* view = static_cast<UnorderedAccessViewImpl*>(pUnorderedAccessView);
   EndRendering();
   if (BufferImpl* buffer = view->buffer()) {
@@ -205,6 +209,7 @@ void ContextImpl::ClearUnorderedAccessViewUint(UnorderedAccessView* pUnorderedAc
 }
 
 void ContextImpl::ClearUnorderedAccessViewFloat(UnorderedAccessView* pUnorderedAccessView, const FLOAT Values[4]) {
+  if (predicationSkips_) return;
   auto* view = static_cast<UnorderedAccessViewImpl*>(pUnorderedAccessView);
   if (view->buffer()) {
     UINT bits[4];
@@ -285,6 +290,7 @@ struct CopyRegion {
 }  // namespace
 
 void ContextImpl::CopyResource(Resource* pDstResource, Resource* pSrcResource) {
+  if (predicationSkips_) return;
   if (BufferImpl* dst = AsBuffer(pDstResource)) {
     BufferImpl* src = AsBuffer(pSrcResource);
     if (!src || src->desc().ByteWidth != dst->desc().ByteWidth) {
@@ -339,6 +345,7 @@ void ContextImpl::CopyStructureCount(Buffer* pDstBuffer, UINT DstAlignedByteOffs
 
 void ContextImpl::CopySubresourceRegion(Resource* pDstResource, UINT DstSubresource, UINT DstX, UINT DstY, UINT,
                                         Resource* pSrcResource, UINT SrcSubresource, const BOX* pSrcBox) {
+  if (predicationSkips_) return;
   EndRendering();
   if (BufferImpl* dst = AsBuffer(pDstResource)) {
     BufferImpl* src = AsBuffer(pSrcResource);
@@ -466,6 +473,7 @@ VkImageView AttachmentView(Gpu& gpu, const TextureStorage& texture, UINT subreso
 
 void ContextImpl::ResolveSubresource(Resource* pDstResource, UINT DstSubresource, Resource* pSrcResource,
                                      UINT SrcSubresource, DXGI_FORMAT Format) {
+  if (predicationSkips_) return;
   TextureStorage* dst = AsTexture(pDstResource);
   TextureStorage* src = AsTexture(pSrcResource);
   if (std::string reason = ResolveRefusal(dst, DstSubresource, src, SrcSubresource, Format); !reason.empty()) {

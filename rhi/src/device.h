@@ -1,6 +1,7 @@
 // The D3D11 device over Vulkan, and the base of every device child.
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <string>
 #include <unordered_map>
@@ -8,6 +9,7 @@
 
 #include "gpu.h"
 #include "host_slices.h"
+#include "private_data.h"
 #include "rhi/rhi.h"
 
 namespace rhi::vk {
@@ -60,8 +62,29 @@ class DeviceImpl final : public Device {
                                 RasterizerState** ppRasterizerState) override;
   HRESULT CreateSamplerState(const SAMPLER_DESC* pSamplerDesc, SamplerState** ppSamplerState) override;
   HRESULT CreateQuery(const QUERY_DESC* pQueryDesc, Query** ppQuery) override;
+  HRESULT CreatePredicate(const QUERY_DESC* pPredicateDesc, Predicate** ppPredicate) override;  // predication.cpp
   HRESULT CheckMultisampleQualityLevels(DXGI_FORMAT Format, UINT SampleCount, UINT* pNumQualityLevels) override;
   void GetImmediateContext(DeviceContext** ppImmediateContext) override;
+  HRESULT CreateDeferredContext(UINT ContextFlags, DeviceContext** ppDeferredContext) override;  // deferred_context.cpp
+  // device_queries.cpp
+  D3D_FEATURE_LEVEL GetFeatureLevel() override { return D3D_FEATURE_LEVEL_11_0; }
+  UINT GetCreationFlags() override;
+  HRESULT GetDeviceRemovedReason() override;
+  HRESULT SetExceptionMode(UINT RaiseFlags) override;
+  UINT GetExceptionMode() override { return exceptionMode_; }
+  HRESULT CheckFormatSupport(DXGI_FORMAT Format, UINT* pFormatSupport) override;
+  HRESULT CheckFeatureSupport(FEATURE Feature, void* pFeatureSupportData, UINT FeatureSupportDataSize) override;
+  HRESULT CreateClassLinkage(ClassLinkage** ppLinkage) override;
+  void CheckCounterInfo(COUNTER_INFO* pCounterInfo) override;
+  HRESULT CreateCounter(const COUNTER_DESC* pCounterDesc, Counter** ppCounter) override;
+  HRESULT CheckCounter(const COUNTER_DESC* pDesc, COUNTER_TYPE* pType, UINT* pActiveCounters, LPSTR szName,
+                       UINT* pNameLength, LPSTR szUnits, UINT* pUnitsLength, LPSTR szDescription,
+                       UINT* pDescriptionLength) override;
+  HRESULT OpenSharedResource(HANDLE hResource, REFIID ReturnedInterface, void** ppResource) override;
+  // private_data.cpp
+  HRESULT GetPrivateData(REFGUID guid, UINT* pDataSize, void* pData) override;
+  HRESULT SetPrivateData(REFGUID guid, UINT DataSize, const void* pData) override;
+  HRESULT SetPrivateDataInterface(REFGUID guid, const Unknown* pData) override;
   const char* GetAdapterName() override { return gpu_->AdapterName().c_str(); }
 
   Gpu& gpu() { return *gpu_; }
@@ -82,7 +105,9 @@ class DeviceImpl final : public Device {
   std::unique_ptr<HostSliceAllocator> hostSlices_;
   std::unique_ptr<PipelineCache> pipelines_;
   std::unique_ptr<ContextImpl> context_;
-  uint64_t objectSerial_ = 0;
+  std::atomic<uint64_t> objectSerial_{0};  // deferred contexts create command lists on their threads
+  UINT exceptionMode_ = 0;  // SetExceptionMode
+  PrivateDataStore privateData_;
   // D3D11 returns the existing object for a desc equal to an earlier one once
   // normalised. Keyed by states::KeyHash; values are weak.
   std::unordered_multimap<uint64_t, DeviceChild*> stateCache_;

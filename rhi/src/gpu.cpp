@@ -425,6 +425,7 @@ void Gpu::Submit() {
   if (result != VK_SUCCESS)
     Report(MESSAGE_CATEGORY_EXECUTION, MESSAGE_SEVERITY_CORRUPTION,
            std::string("vkQueueSubmit2 failed: ") + ResultName(result));
+  NoteResult(result, "vkQueueSubmit2");
   inFlight_.push_back(std::move(recording_));
   ++recordingSerial_;
 }
@@ -454,10 +455,20 @@ bool Gpu::IsComplete(uint64_t serial) {
 
 void Gpu::WaitFor(uint64_t serial) {
   if (serial >= recordingSerial_ && recording_) Submit();
-  while (!IsComplete(serial) && !inFlight_.empty()) {
-    vkWaitForFences(device_, 1, &inFlight_.front()->fence, VK_TRUE, UINT64_MAX);
+  // A lost device never signals its fences: the wait ends instead of hanging,
+  // and GetDeviceRemovedReason says why.
+  while (!deviceLost_ && !IsComplete(serial) && !inFlight_.empty()) {
+    NoteResult(vkWaitForFences(device_, 1, &inFlight_.front()->fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
     RetireCompleted();
   }
+}
+
+void Gpu::NoteResult(VkResult result, const char* call) {
+  if (result != VK_ERROR_DEVICE_LOST || deviceLost_) return;
+  deviceLost_ = true;
+  Report(MESSAGE_CATEGORY_EXECUTION, MESSAGE_SEVERITY_CORRUPTION,
+         std::string(call) + " returned VK_ERROR_DEVICE_LOST: the device is removed "
+                             "(GetDeviceRemovedReason returns DXGI_ERROR_DEVICE_REMOVED)");
 }
 
 void Gpu::WaitIdle() {

@@ -54,6 +54,12 @@ class Gpu {
   const GpuCapabilities& Caps() const { return caps_; }
   const std::string& AdapterName() const { return adapterName_; }
   bool NativeDrawAuto() const { return nativeDrawAuto_; }
+  // The validation layer (the D3D11 debug layer's counterpart) is on.
+  bool Validating() const { return messenger_ != VK_NULL_HANDLE; }
+  // Vulkan reported VK_ERROR_DEVICE_LOST: nothing more completes, and waits return at once.
+  bool DeviceLost() const { return deviceLost_; }
+  // Names a Vulkan object for debuggers and validation messages (VK_EXT_debug_utils; private_data.cpp).
+  void SetObjectName(VkObjectType type, uint64_t handle, const std::string& name) const;
 
   // Reports a refusal or a validation message to the application.
   void Report(MESSAGE_CATEGORY category, MESSAGE_SEVERITY severity, const std::string& text) const;
@@ -134,6 +140,9 @@ class Gpu {
   std::vector<std::unique_ptr<Submission>> idle_;
   uint64_t recordingSerial_ = 1;
   uint64_t completedSerial_ = 0;
+  bool deviceLost_ = false;
+  // Records a VK_ERROR_DEVICE_LOST (reported once).
+  void NoteResult(VkResult result, const char* call);
 };
 
 }  // namespace rhi::vk

@@ -234,7 +234,7 @@ std::string ValidateTextureShape(const TextureShape& s, const SUBRESOURCE_DATA* 
   if (s.usage == USAGE_STAGING && s.bindFlags) return where + "USAGE_STAGING cannot have bind flags";
   if (s.usage == USAGE_DYNAMIC)
     return where + "USAGE_DYNAMIC textures are not supported by this backend (use DEFAULT + UpdateSubresource)";
-  return {};
+  return CheckMiscFlags(s, where);
 }
 
 VkImageUsageFlags ImageUsage(const TextureShape& s, bool depth) {
@@ -276,6 +276,8 @@ HRESULT TextureStorage::Initialize(DeviceImpl& device, const TextureShape& shape
     if (std::string reason = PickDepthImageFormat(device.gpu()); !reason.empty())
       return device.gpu().Refuse(std::string(call) + ": " + reason);
   }
+  if (std::string reason = CheckMipGenerationFormat(device.gpu(), shape_, vkFormat_, call); !reason.empty())
+    return device.gpu().Refuse(reason);
   aspects_ = depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
   if (depth && (vkFormat_ == VK_FORMAT_D24_UNORM_S8_UINT || vkFormat_ == VK_FORMAT_D32_SFLOAT_S8_UINT ||
                 vkFormat_ == VK_FORMAT_D16_UNORM_S8_UINT))

@@ -5,17 +5,17 @@
 # (README "Porting a D3D11 program"; tests/install builds such a project).
 include(CMakePackageConfigHelpers)
 
-# One target for users: the RHI, the HLSL compiler and the effect runtime.
+# One target for users: the RHI, the HLSL compiler, the effect runtime and the texture loader.
 add_library(d3d11_on_vulkan INTERFACE)
-target_link_libraries(d3d11_on_vulkan INTERFACE rhi hlsl_compiler fx_runtime)
+target_link_libraries(d3d11_on_vulkan INTERFACE rhi hlsl_compiler fx_runtime texture_files)
 add_library(d3d11_on_vulkan::d3d11_on_vulkan ALIAS d3d11_on_vulkan)
 
 # The static libraries' private dependencies (rhi_spirv, rhi_states) are part of the link.
-install(TARGETS d3d11_on_vulkan rhi rhi_spirv rhi_states hlsl_compiler fx_frontend fx_runtime
+install(TARGETS d3d11_on_vulkan rhi rhi_spirv rhi_states hlsl_compiler fx_frontend fx_runtime texture_files
         EXPORT d3d11_on_vulkanTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
-install(DIRECTORY rhi/include/ effects/fx/include/ effects/hlsl/include/ effects/runtime/include/
+install(DIRECTORY rhi/include/ textures/include/ effects/fx/include/ effects/hlsl/include/ effects/runtime/include/
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(TARGETS fxtool replay demo RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(DIRECTORY shaders_hlsl/ DESTINATION ${D3D11VK_SHADER_INSTALL_DIR})

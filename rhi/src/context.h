@@ -103,6 +103,7 @@ class ContextImpl final : public DeviceContext {
                                                  DepthStencilView** ppDepthStencilView, UINT UAVStartSlot,
                                                  UINT NumUAVs, UnorderedAccessView** ppUnorderedAccessViews) override;
   void OMSetBlendState(BlendState* pBlendState, const FLOAT BlendFactor[4], UINT SampleMask) override;
+  void OMGetBlendState(BlendState** ppBlendState, FLOAT BlendFactor[4], UINT* pSampleMask) override;
   void OMSetDepthStencilState(DepthStencilState* pDepthStencilState, UINT StencilRef) override;
 
   void Draw(UINT VertexCount, UINT StartVertexLocation) override;

@@ -339,6 +339,15 @@ void ContextImpl::SetTargetsKey() {
   PipelineStateChanged();
 }
 
+void ContextImpl::OMGetBlendState(BlendState** ppBlendState, FLOAT BlendFactor[4], UINT* pSampleMask) {
+  if (ppBlendState) {
+    *ppBlendState = blendState_.Get();
+    if (*ppBlendState) (*ppBlendState)->AddRef();
+  }
+  if (BlendFactor) std::copy(blendFactor_.begin(), blendFactor_.end(), BlendFactor);
+  if (pSampleMask) *pSampleMask = sampleMask_;
+}
+
 void ContextImpl::OMSetBlendState(BlendState* pBlendState, const FLOAT BlendFactor[4], UINT SampleMask) {
   auto* state = static_cast<BlendStateImpl*>(pBlendState);
   if (state != blendState_.Get() || SampleMask != sampleMask_) {

@@ -13,6 +13,16 @@ UINT BitsPerPixel(DXGI_FORMAT format) {
 
 const char* FormatName(DXGI_FORMAT format) { return states::FormatName(format); }
 
+UINT FormatBindFlags(DXGI_FORMAT format) {
+  const states::FormatInfo* info = states::GetFormatInfo(format);
+  return info ? info->bindFlags : 0u;
+}
+
+bool IsTypeless(DXGI_FORMAT format) {
+  const states::FormatInfo* info = states::GetFormatInfo(format);
+  return info && info->kind == states::ComponentKind::Typeless;
+}
+
 bool IsCompressed(DXGI_FORMAT format) {
   const states::FormatInfo* info = states::GetFormatInfo(format);
   return info && info->blockSize > 1;

@@ -141,6 +141,7 @@ class TracingContext final : public DeviceContext {
                                                  UINT uavStart, UINT uavCount, UnorderedAccessView** uavs) override {
     inner_->OMGetRenderTargetsAndUnorderedAccessViews(n, rtvs, dsv, uavStart, uavCount, uavs);
   }
+  void OMGetBlendState(BlendState** s, FLOAT factor[4], UINT* mask) override { inner_->OMGetBlendState(s, factor, mask); }
   void OMSetBlendState(BlendState* s, const FLOAT factor[4], UINT mask) override {
     Record("OMSetBlendState", Obj(s) + Format(", 0x%08X", mask));
     inner_->OMSetBlendState(s, factor, mask);

@@ -14,6 +14,14 @@ UINT BitsPerPixel(DXGI_FORMAT format);
 // "DXGI_FORMAT_R8G8B8A8_UNORM"; null for values not in d3d11_types.h.
 const char* FormatName(DXGI_FORMAT format);
 
+// The BIND_* flags D3D11 feature level 11_0 requires `format` to support (BIND_RENDER_TARGET:
+// it can be rendered to); 0 for values not in d3d11_types.h. Typeless formats list what
+// their typed views may be bound as.
+UINT FormatBindFlags(DXGI_FORMAT format);
+
+// Whether `format` is typeless (DXGI_FORMAT_*_TYPELESS, R24_UNORM_X8_TYPELESS excepted).
+bool IsTypeless(DXGI_FORMAT format);
+
 // Whether `format` is block-compressed (BC1-BC7: 4x4 texel blocks).
 bool IsCompressed(DXGI_FORMAT format);
 

@@ -239,6 +239,9 @@ class DeviceContext : public DeviceChild {
                                                          UINT NumUAVs,
                                                          UnorderedAccessView** ppUnorderedAccessViews) = 0;
   virtual void OMSetBlendState(BlendState* pBlendState, const FLOAT BlendFactor[4], UINT SampleMask) = 0;
+  // The bound blend state (with a reference; null for the default), factor and sample
+  // mask; null pointers skip that part.
+  virtual void OMGetBlendState(BlendState** ppBlendState, FLOAT BlendFactor[4], UINT* pSampleMask) = 0;
   virtual void OMSetDepthStencilState(DepthStencilState* pDepthStencilState, UINT StencilRef) = 0;
 
   // Draws and dispatches

@@ -320,6 +320,18 @@ TEST_F(TextureFilesTest, PngLoadsWithMipsAndSrgbChoice) {
   EXPECT_TRUE(Refusals().empty());
 }
 
+// stb_image reads zeros past the end of a TGA; the loader checks the header's size instead
+// (the fuzzer's finding: tests/fuzz/texture_corpus/regression_tga_truncated_17_bytes.tga).
+TEST_F(TextureFilesTest, TruncatedTgaIsNamed) {
+  std::vector<uint8_t> tga{0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0, 2, 0, 32, 8};  // 2x2, 32 bits
+  tga.resize(tga.size() + 8);                                                      // half the pixels
+  const fs::path path = WriteFile("half.tga", tga);
+  ComPtr<rhi::ShaderResourceView> srv;
+  EXPECT_EQ(rhi::CreateWICTextureFromFile(device.Get(), nullptr, path, nullptr, srv.GetAddressOf(), 0, &error),
+            rhi::E_FAIL);
+  EXPECT_EQ(error, path.string() + ": truncated: a 2x2 TGA needs 34 bytes, the file has 26");
+}
+
 TEST_F(TextureFilesTest, NotAnImageIsNamed) {
   const fs::path path = WriteFile("notes.png", {'h', 'e', 'l', 'l', 'o'});
   ComPtr<rhi::ShaderResourceView> srv;

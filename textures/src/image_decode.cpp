@@ -13,6 +13,48 @@
 #include <stb_image.h>
 
 namespace rhi {
+namespace {
+
+uint32_t Le(const uint8_t* p, int bytes) {
+  uint32_t v = 0;
+  for (int i = 0; i < bytes; ++i) v |= uint32_t(p[i]) << (8 * i);
+  return v;
+}
+
+// stb_image reads zeros past the end of a TGA or BMP, so a truncated file would load as a
+// partly black image (and a 17-byte TGA claiming 3340x3854 took seconds: the fuzzer's
+// first finding). Their headers say how many bytes the pixels take: check it.
+std::string Truncation(const uint8_t* data, size_t size, int width, int height) {
+  const uint64_t pixels = uint64_t(width) * uint64_t(height);
+  stbi__context context;  // stb's own format tests, in its order (each rewinds)
+  stbi__start_mem(&context, data, int(size));
+  if (stbi__png_test(&context) || stbi__jpeg_test(&context)) return {};
+  const bool bmp = stbi__bmp_test(&context);
+  if (!bmp && stbi__tga_test(&context)) {
+    if (size < 18) return "truncated: " + std::to_string(size) + " bytes, a TGA header needs 18";
+    const uint64_t bytesPerPixel = (data[16] + 7) / 8;
+    const uint64_t colorMap = data[1] ? uint64_t(Le(data + 5, 2)) * ((data[7] + 7) / 8) : 0;
+    const uint64_t header = 18 + data[0] + colorMap;
+    const bool rle = data[2] >= 9;
+    // An RLE packet is a byte and at least one pixel value for at most 128 pixels.
+    const uint64_t needed = header + (rle ? (pixels + 127) / 128 * (1 + bytesPerPixel) : pixels * bytesPerPixel);
+    if (size < needed)
+      return "truncated: a " + std::to_string(width) + "x" + std::to_string(height) + (rle ? " RLE" : "") +
+             " TGA needs " + (rle ? "at least " : "") + std::to_string(needed) + " bytes, the file has " +
+             std::to_string(size);
+  } else if (bmp && size < 34) {
+    return "truncated: " + std::to_string(size) + " bytes, a BMP header needs 34";
+  } else if (bmp && (Le(data + 30, 4) == 0 || Le(data + 30, 4) == 3)) {
+    const uint64_t rowBytes = (uint64_t(width) * Le(data + 28, 2) + 31) / 32 * 4;
+    const uint64_t needed = uint64_t(Le(data + 10, 4)) + rowBytes * uint64_t(height);
+    if (size < needed)
+      return "truncated: a " + std::to_string(width) + "x" + std::to_string(height) + " BMP needs " +
+             std::to_string(needed) + " bytes, the file has " + std::to_string(size);
+  }
+  return {};
+}
+
+}  // namespace
 
 HRESULT DecodeImage(const uint8_t* data, size_t size, const char* name, DECODED_IMAGE* image, std::string* error) {
   const std::string where = std::string(name ? name : "<memory>") + ": ";
@@ -26,6 +68,8 @@ HRESULT DecodeImage(const uint8_t* data, size_t size, const char* name, DECODED_
     return *error = where + "size " + std::to_string(width) + "x" + std::to_string(height) +
                     " exceeds D3D11's limit of 16384",
            E_FAIL;
+  if (std::string truncated = Truncation(data, size, width, height); !truncated.empty())
+    return *error = where + truncated, E_FAIL;
   stbi_uc* pixels = stbi_load_from_memory(data, int(size), &width, &height, &channels, 4);
   if (!pixels) return *error = where + "cannot decode the image (" + stbi_failure_reason() + ")", E_FAIL;
   image->Width = UINT(width);

@@ -63,6 +63,9 @@ HRESULT DecodeImage(const uint8_t* data, size_t size, const char* name, DECODED_
   int width = 0, height = 0, channels = 0;
   if (!stbi_info_from_memory(data, int(size), &width, &height, &channels))
     return *error = where + "not a PNG, JPEG, TGA or BMP image (" + stbi_failure_reason() + ")", E_FAIL;
+  // stb_image accepts a BMP of height 0 (the fuzzer's second finding); a texture cannot be empty.
+  if (width <= 0 || height <= 0)
+    return *error = where + "an empty image (" + std::to_string(width) + "x" + std::to_string(height) + ")", E_FAIL;
   // D3D11's 2D limit, checked before stb allocates the pixels.
   if (width > 16384 || height > 16384)
     return *error = where + "size " + std::to_string(width) + "x" + std::to_string(height) +

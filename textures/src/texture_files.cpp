@@ -53,8 +53,9 @@ struct CreateFlags {
   UINT miscFlags = 0;
 };
 
-// The texture (1D or 2D, arrays and cubes) and, when asked, its whole-resource SRV.
-HRESULT CreateFromDds(Device* device, const DDS_TEXTURE& dds, const std::string& name, const CreateFlags& flags,
+// The texture a DDS_TEXTURE describes (1D or 2D, arrays and cubes; decoded images are
+// described the same way) and, when asked, its whole-resource SRV.
+HRESULT CreateTexture(Device* device, const DDS_TEXTURE& dds, const std::string& name, const CreateFlags& flags,
                       Resource** texture, ShaderResourceView** textureView, std::string* error) {
   if (dds.Dimension == RESOURCE_DIMENSION_TEXTURE3D)
     return Fail(E_NOTIMPL,
@@ -118,7 +119,7 @@ HRESULT LoadDds(Device* device, const uint8_t* data, size_t size, const std::str
     return Fail(E_INVALIDARG, name + ": " + tooLarge, error);
   if (loadFlags & DDS_LOADER_FORCE_SRGB) dds.Format = SrgbTwin(dds.Format);
   if (alphaMode) *alphaMode = dds.AlphaMode;
-  return CreateFromDds(device, dds, name, flags, texture, textureView, error);
+  return CreateTexture(device, dds, name, flags, texture, textureView, error);
 }
 
 // sRGB <-> linear light, for filtering _SRGB mip levels as the GPU would.
@@ -184,7 +185,7 @@ HRESULT LoadImage(Device* device, DeviceContext* context, const uint8_t* data, s
     const UINT rowPitch = std::max(1u, image.Width >> mip) * 4;
     texture2d.Subresources.push_back({levels[mip].data(), rowPitch, UINT(levels[mip].size())});
   }
-  return CreateFromDds(device, texture2d, name, flags, texture, textureView, error);
+  return CreateTexture(device, texture2d, name, flags, texture, textureView, error);
 }
 
 std::string NameOf(const std::filesystem::path& path) { return path.string(); }

@@ -320,6 +320,32 @@ TEST_F(TextureFilesTest, PngLoadsWithMipsAndSrgbChoice) {
   EXPECT_TRUE(Refusals().empty());
 }
 
+// A JPEG from stb_image_write loads (its Huffman tables pass the loader's DHT check), and
+// one whose table declares 272 codes is refused before stb_image would overflow its table.
+TEST_F(TextureFilesTest, JpegLoadsAndCorruptHuffmanTablesAreRefused) {
+  std::vector<uint8_t> jpeg;
+  const std::vector<uint8_t> grey(8 * 8 * 3, 128);
+  ASSERT_NE(stbi_write_jpg_to_func(
+                [](void* out, void* data, int size) {
+                  auto* bytes = static_cast<uint8_t*>(data);
+                  static_cast<std::vector<uint8_t>*>(out)->insert(static_cast<std::vector<uint8_t>*>(out)->end(),
+                                                                  bytes, bytes + size);
+                },
+                &jpeg, 8, 8, 3, grey.data(), 90),
+            0);
+  ComPtr<rhi::Resource> texture;
+  ASSERT_EQ(rhi::CreateWICTextureFromMemory(device.Get(), nullptr, jpeg.data(), jpeg.size(), texture.GetAddressOf(),
+                                            nullptr, 0, &error),
+            rhi::S_OK)
+      << error;
+  const std::vector<uint8_t> corrupt{0xFF, 0xD8, 0xFF, 0xC4, 0x00, 0x13, 0x00, 0x11, 0xFF, 0, 0, 0, 0, 0,
+                                     0,    0,    0,    0,    0,    0,    0,    0,    0,    0,    0};
+  EXPECT_EQ(rhi::CreateWICTextureFromMemory(device.Get(), nullptr, corrupt.data(), corrupt.size(),
+                                            texture.ReleaseAndGetAddressOf(), nullptr, 0, &error),
+            rhi::E_FAIL);
+  EXPECT_EQ(error, "<memory>: corrupt JPEG: a Huffman table at byte 2 declares 272 codes (at most 256)");
+}
+
 // stb_image reads zeros past the end of a TGA; the loader checks the header's size instead
 // (the fuzzer's finding: tests/fuzz/texture_corpus/regression_tga_truncated_17_bytes.tga).
 TEST_F(TextureFilesTest, TruncatedTgaIsNamed) {

@@ -54,6 +54,33 @@ std::string Truncation(const uint8_t* data, size_t size, int width, int height) 
   return {};
 }
 
+// Debian's stb_image (2022-09) writes past its 257-entry Huffman size list when a JPEG's
+// DHT table declares more than 256 codes (the fuzzer's third finding; later stb releases
+// check it). Every FF C4 (DHT) marker's tables are summed first, reading past the end as
+// zeros as stb does. Bytes inside other segments that happen to read FF C4 are checked
+// too; a real DHT never exceeds 256 codes, so only a corrupt-looking table is refused.
+std::string JpegHuffmanOverflow(const uint8_t* data, size_t size) {
+  auto at = [&](size_t i) -> uint32_t { return i < size ? data[i] : 0; };
+  for (size_t marker = 0; marker + 1 < size; ++marker) {
+    if (data[marker] != 0xFF || data[marker + 1] != 0xC4) continue;
+    size_t pos = marker + 2;
+    int64_t remaining = int64_t(at(pos) << 8 | at(pos + 1)) - 2;
+    pos += 2;
+    while (remaining > 0 && pos < size) {
+      const uint32_t header = at(pos);
+      if ((header >> 4) > 1 || (header & 15) > 3) break;  // stb stops with "bad DHT header"
+      uint32_t codes = 0;
+      for (int i = 0; i < 16; ++i) codes += at(pos + 1 + i);
+      if (codes > 256)
+        return "corrupt JPEG: a Huffman table at byte " + std::to_string(marker) + " declares " +
+               std::to_string(codes) + " codes (at most 256)";
+      pos += 17 + codes;
+      remaining -= 17 + codes;
+    }
+  }
+  return {};
+}
+
 }  // namespace
 
 HRESULT DecodeImage(const uint8_t* data, size_t size, const char* name, DECODED_IMAGE* image, std::string* error) {
@@ -61,6 +88,10 @@ HRESULT DecodeImage(const uint8_t* data, size_t size, const char* name, DECODED_
   if (!image || (!data && size)) return E_INVALIDARG;
   if (size > INT_MAX) return *error = where + "larger than 2 GiB", E_FAIL;
   int width = 0, height = 0, channels = 0;
+  stbi__context jpeg;
+  stbi__start_mem(&jpeg, data, int(size));
+  if (stbi__jpeg_test(&jpeg))
+    if (std::string overflow = JpegHuffmanOverflow(data, size); !overflow.empty()) return *error = where + overflow, E_FAIL;
   if (!stbi_info_from_memory(data, int(size), &width, &height, &channels))
     return *error = where + "not a PNG, JPEG, TGA or BMP image (" + stbi_failure_reason() + ")", E_FAIL;
   // stb_image accepts a BMP of height 0 (the fuzzer's second finding); a texture cannot be empty.

@@ -2,8 +2,8 @@
 //
 //   fxtool info FILE.fx [-I dir] [-D NAME[=VALUE]]
 //   fxtool run  FILE.fx --technique T [--pass P] [--points N | --vertices FILE]
-//               [--target FORMAT:WxH[:clear=r,g,b,a]]... [--depth D32_FLOAT[:clear=1]]
-//               [--set name=v1,v2,...]... [--out DIR] [--pixel x,y]... [--dispatch X,Y,Z]
+//               [--target FORMAT:WxH[:clear=r,g,b,a][:samples=N]]... [--sample-mask M]
+//               [--depth D32_FLOAT[:clear=1]] [--texture NAME=FILE]... [--set name=v1,v2,...]... [--out DIR] [--pixel x,y]... [--dispatch X,Y,Z]
 //               [--buffer NAME:ELEMENTS]... [--so-bytes N] [--so-vertices N] [--so-uint SEM,...] [--topology NAME]
 //               [--validation] [-I dir] [-D NAME=VALUE]
 //
@@ -38,6 +38,7 @@
 #include "fxtool_names.h"
 #include "hlsl/hlsl_compiler.h"
 #include "rhi/query_wait.h"
+#include "rhi/texture_files.h"
 #include "rhi/rhi.h"
 #include "rhi_reference/formats.h"
 
@@ -49,8 +50,8 @@ constexpr const char* kUsage =
     "usage:\n"
     "  fxtool info FILE.fx [-I dir] [-D NAME[=VALUE]]\n"
     "  fxtool run FILE.fx --technique T [--pass P] [--points N | --vertices FILE]\n"
-    "         [--target FORMAT:WxH[:clear=r,g,b,a]]... [--depth D32_FLOAT[:clear=1]]\n"
-    "         [--set name=v1,v2,...]... [--out DIR] [--pixel x,y]... [--dispatch X,Y,Z]\n"
+    "         [--target FORMAT:WxH[:clear=r,g,b,a][:samples=N]]... [--sample-mask M]\n"
+    "         [--depth D32_FLOAT[:clear=1]] [--texture NAME=FILE]... [--set name=v1,v2,...]... [--out DIR] [--pixel x,y]... [--dispatch X,Y,Z]\n"
     "         [--buffer NAME:ELEMENTS]... [--so-bytes N] [--so-vertices N] [--so-uint SEM,...] [--topology NAME]\n"
     "         [--validation]"
     " [-I dir] [-D NAME=VALUE]\n";
@@ -59,6 +60,7 @@ struct Target {
   std::string formatName;
   rhi::DXGI_FORMAT format = rhi::DXGI_FORMAT_R8G8B8A8_UNORM;
   unsigned width = 0, height = 0;
+  unsigned samples = 1;  // multisampled targets are resolved before they are read
   float clear[4] = {0, 0, 0, 0};
 };
 
@@ -70,6 +72,8 @@ struct Options {
   int points = -1;
   std::string verticesFile;
   std::vector<Target> targets;
+  std::optional<unsigned> sampleMask;  // --sample-mask: replaces the pass's SampleMask
+  std::vector<std::pair<std::string, std::string>> textures;  // --texture NAME=FILE
   bool depth = false;
   float depthClear = 1.0f;
   std::vector<std::pair<std::string, std::vector<double>>> sets;
@@ -112,10 +116,11 @@ std::vector<double> ParseNumbers(const std::string& s, const std::string& what) 
   return out;
 }
 
-// FORMAT:WxH[:clear=r,g,b,a]
+// FORMAT:WxH[:clear=r,g,b,a][:samples=N]
 Target ParseTarget(const std::string& spec) {
   std::vector<std::string> parts = Split(spec, ':');
-  if (parts.size() < 2 || parts.size() > 3) Usage("--target wants FORMAT:WxH[:clear=r,g,b,a], got '" + spec + "'");
+  if (parts.size() < 2 || parts.size() > 4)
+    Usage("--target wants FORMAT:WxH[:clear=r,g,b,a][:samples=N], got '" + spec + "'");
   Target t;
   t.formatName = parts[0];
   bool known = false;
@@ -133,11 +138,21 @@ Target ParseTarget(const std::string& spec) {
   if (std::sscanf(parts[1].c_str(), "%ux%u", &t.width, &t.height) != 2 || t.width == 0 || t.height == 0 ||
       t.width > 16384 || t.height > 16384)
     Usage("bad target size '" + parts[1] + "'");
-  if (parts.size() == 3) {
-    if (parts[2].rfind("clear=", 0) != 0) Usage("bad target option '" + parts[2] + "'");
-    std::vector<double> c = ParseNumbers(parts[2].substr(6), "--target clear");
-    if (c.size() != 4) Usage("clear= wants 4 values");
-    for (int i = 0; i < 4; ++i) t.clear[i] = static_cast<float>(c[i]);
+  for (size_t i = 2; i < parts.size(); ++i) {
+    if (parts[i].rfind("clear=", 0) == 0) {
+      std::vector<double> c = ParseNumbers(parts[i].substr(6), "--target clear");
+      if (c.size() != 4) Usage("clear= wants 4 values");
+      for (int k = 0; k < 4; ++k) t.clear[k] = static_cast<float>(c[k]);
+    } else if (parts[i].rfind("samples=", 0) == 0) {
+      const double n = ParseNumber(parts[i].substr(8), "--target samples");
+      if (n < 1 || n > 32) Usage("samples= wants a count from 1 to 32");
+      t.samples = static_cast<unsigned>(n);
+      // D3D11 resolves only float, UNORM and sRGB formats (ResolveSubresource).
+      if (t.samples > 1 && rhi::reference::IsUintFormat(t.format))
+        Usage("samples= needs a format that can be resolved; " + t.formatName + " cannot");
+    } else {
+      Usage("bad target option '" + parts[i] + "'");
+    }
   }
   return t;
 }
@@ -164,6 +179,18 @@ Options ParseArgs(int argc, char** argv) {
     else if (a == "--points") o.points = static_cast<int>(ParseNumber(value(), "--points"));
     else if (a == "--vertices") o.verticesFile = value();
     else if (a == "--target") o.targets.push_back(ParseTarget(value()));
+    else if (a == "--sample-mask") {
+      const std::string m = value();
+      char* end = nullptr;
+      const unsigned long mask = std::strtoul(m.c_str(), &end, 0);
+      if (m.empty() || *end != '\0' || mask > 0xFFFFFFFFul) Usage("--sample-mask wants a 32-bit number, got '" + m + "'");
+      o.sampleMask = static_cast<unsigned>(mask);
+    } else if (a == "--texture") {
+      const std::string t = value();
+      const size_t eq = t.find('=');
+      if (eq == std::string::npos || eq == 0 || eq + 1 == t.size()) Usage("--texture wants NAME=FILE, got '" + t + "'");
+      o.textures.emplace_back(t.substr(0, eq), t.substr(eq + 1));
+    }
     else if (a == "--depth") {
       std::vector<std::string> parts = Split(value(), ':');
       if (parts[0] != "D32_FLOAT") Usage("--depth supports D32_FLOAT only");
@@ -629,6 +656,15 @@ bool ReadBack(rhi::Device* device, rhi::DeviceContext* ctx, const Target& t, rhi
               std::vector<rhi::reference::Float4>* pixels, std::vector<rhi::reference::StoredColor>* stored) {
   rhi::TEXTURE2D_DESC desc{};
   texture->GetDesc(&desc);
+  ComPtr<rhi::Texture2D> resolved;  // a multisampled target: the average of its samples
+  if (desc.SampleDesc.Count > 1) {
+    desc.SampleDesc = {1, 0};
+    desc.BindFlags = rhi::BIND_RENDER_TARGET;
+    if (!Check(device->CreateTexture2D(&desc, nullptr, resolved.GetAddressOf()), "CreateTexture2D(resolve)"))
+      return false;
+    ctx->ResolveSubresource(resolved.Get(), 0, texture, 0, desc.Format);
+    texture = resolved.Get();
+  }
   desc.Usage = rhi::USAGE_STAGING;
   desc.BindFlags = 0;
   desc.CPUAccessFlags = rhi::CPU_ACCESS_READ;
@@ -742,6 +778,24 @@ int Run(const Options& o) {
     }
     for (const auto& [name, values] : o.sets)
       if (!SetVariable(effect.Get(), name, values)) return 1;
+    // --texture NAME=FILE: DDS, PNG, JPEG, TGA or BMP (rhi/texture_files.h), with its mip chain.
+    std::vector<ComPtr<rhi::ShaderResourceView>> textures;
+    for (const auto& [name, file] : o.textures) {
+      fx::EffectShaderResourceVariable* var = effect->GetVariableByName(name.c_str())->AsShaderResource();
+      if (!var->IsValid()) {
+        std::fprintf(stderr, "fxtool: error: --texture %s: the effect has no shader-resource variable '%s'\n",
+                     name.c_str(), name.c_str());
+        return 1;
+      }
+      std::string error;
+      ComPtr<rhi::ShaderResourceView>& srv = textures.emplace_back();
+      if (rhi::FAILED(rhi::CreateTextureFromFile(device.Get(), ctx.Get(), file, rhi::WIC_LOADER_DEFAULT, nullptr,
+                                                 srv.GetAddressOf(), &error))) {
+        std::fprintf(stderr, "fxtool: error: --texture %s: %s\n", name.c_str(), error.c_str());
+        return 1;
+      }
+      if (!Check(var->SetResource(srv.Get()), "SetResource")) return 1;
+    }
 
     // Targets: render targets, or (for a compute pass) UAVs bound to the effect's
     // RWTexture2D variables in declaration order.
@@ -766,6 +820,7 @@ int Run(const Options& o) {
       desc.MipLevels = 1;
       desc.ArraySize = 1;
       desc.Format = t.format;
+      desc.SampleDesc = {t.samples, 0};
       desc.Usage = rhi::USAGE_DEFAULT;
       desc.BindFlags = (anyGraphics ? rhi::BIND_RENDER_TARGET : 0u) |
                        (anyCompute && i < rwTextures.size() ? rhi::BIND_UNORDERED_ACCESS : 0u);
@@ -914,6 +969,12 @@ int Run(const Options& o) {
       ctx->GSSetShader(nullptr, nullptr, 0);
       ctx->PSSetShader(nullptr, nullptr, 0);
       if (!Check(pass->Apply(0, ctx.Get()), "EffectPass::Apply")) return 1;
+      if (o.sampleMask) {  // the pass's blend state and factor with --sample-mask's mask
+        ComPtr<rhi::BlendState> blend;
+        rhi::FLOAT factor[4];
+        ctx->OMGetBlendState(blend.GetAddressOf(), factor, nullptr);
+        ctx->OMSetBlendState(blend.Get(), factor, *o.sampleMask);
+      }
 
       rhi::PRIMITIVE_TOPOLOGY topology = rhi::PRIMITIVE_TOPOLOGY_TRIANGLELIST;
       unsigned count = 3;

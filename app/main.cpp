@@ -35,6 +35,7 @@
 #include <string>
 #include <vector>
 
+#include "fx/shader_directory.h"
 #include "hlsl/hlsl_compiler.h"
 #include "rhi/capture.h"
 #include "rhi/query_wait.h"
@@ -194,7 +195,7 @@ class Demo {
   explicit Demo(rhi::Device* device, rhi::DeviceContext* context) : device_(device), context_(context) {}
 
   void Initialize() {
-    const std::string shaderPath = std::string(PROJECT_SOURCE_ROOT) + "/shaders_hlsl/scene.hlsl";
+    const std::string shaderPath = fx::ShaderDirectory() + "/scene.hlsl";
     std::vector<uint32_t> vsCode = Compile(shaderPath, "VSMain", "vs_5_0");
     std::vector<uint32_t> psCode = Compile(shaderPath, "PSMain", "ps_5_0");
     Check(device_->CreateVertexShader(vsCode.data(), vsCode.size() * 4, nullptr, vs_.GetAddressOf()),

@@ -57,6 +57,7 @@
 #include <string>
 #include <vector>
 
+#include "fx/shader_directory.h"
 #include "hlsl/hlsl_compiler.h"
 #include "imgui_rhi.h"
 #include "renderer/translucency.h"
@@ -133,7 +134,7 @@ bool ParseOptions(int argc, char** argv, Options* o, std::string* error) {
 
 bool Compile(const char* entry, const char* profile, std::vector<uint32_t>* spirv) {
   hlsl::CompileResult result =
-      hlsl::CompileHlslFile(PROJECT_SOURCE_ROOT "/shaders_hlsl/imgui.hlsl", entry, profile);
+      hlsl::CompileHlslFile(fx::ShaderDirectory() + "/imgui.hlsl", entry, profile);
   if (!result.ok) {
     std::fprintf(stderr, "%s", result.FormatErrors().c_str());
     return false;

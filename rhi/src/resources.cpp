@@ -221,6 +221,12 @@ std::string ValidateTextureShape(const TextureShape& s, const SUBRESOURCE_DATA* 
     return where + "textures cannot be bound as vertex, index, constant or stream-output buffers";
   if ((s.bindFlags & BIND_DEPTH_STENCIL) && !format->isDepth && format->kind != states::ComponentKind::Typeless)
     return where + "BIND_DEPTH_STENCIL needs a depth or typeless format";
+  // D3D11: block-compressed textures are shader resources only (and staging copies).
+  if (format->blockSize > 1 && (s.bindFlags & ~BIND_SHADER_RESOURCE))
+    return where + std::string(format->name) + " textures can only have BIND_SHADER_RESOURCE (BindFlags " +
+           Hex(s.bindFlags) + ")";
+  if (format->blockSize > 1 && s.samples > 1)
+    return where + std::string(format->name) + " textures cannot be multisampled";
   if ((s.bindFlags & BIND_RENDER_TARGET) && format->isDepth)
     return where + "BIND_RENDER_TARGET cannot use a depth format";
   // D3D11: a depth format cannot be read by shaders; a depth buffer that is
@@ -282,6 +288,10 @@ HRESULT TextureStorage::Initialize(DeviceImpl& device, const TextureShape& shape
   if (depth && (vkFormat_ == VK_FORMAT_D24_UNORM_S8_UINT || vkFormat_ == VK_FORMAT_D32_SFLOAT_S8_UINT ||
                 vkFormat_ == VK_FORMAT_D16_UNORM_S8_UINT))
     aspects_ |= VK_IMAGE_ASPECT_STENCIL_BIT;
+  if (format->blockSize > 1 && !isStaging() &&
+      !device.gpu().IsFormatSupported(vkFormat_, VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_BIT))
+    return device.gpu().Refuse(std::string(call) + ": " + device.gpu().AdapterName() + " cannot sample " +
+                               format->name + " (the device lacks textureCompressionBC)");
   device_ = &device;
   HRESULT hr = isStaging() ? CreateStagingBuffer(device) : CreateImage(device);
   if (FAILED(hr) || !initialData || !initialData->pSysMem) return hr;
@@ -431,11 +441,12 @@ VkImageSubresourceLayers TextureStorage::Layers(UINT subresource) const {
 }
 
 UINT TextureStorage::RowPitch(UINT subresource) const {
-  return MipExtent(subresource % shape_.mipLevels).width * states::GetFormatInfo(shape_.format)->bytesPerElement;
+  return states::RowPitchBytes(*states::GetFormatInfo(shape_.format), MipExtent(subresource % shape_.mipLevels).width);
 }
 
 UINT TextureStorage::DepthPitch(UINT subresource) const {
-  return RowPitch(subresource) * MipExtent(subresource % shape_.mipLevels).height;
+  return RowPitch(subresource) *
+         states::RowCount(*states::GetFormatInfo(shape_.format), MipExtent(subresource % shape_.mipLevels).height);
 }
 
 }  // namespace rhi::vk

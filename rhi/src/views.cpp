@@ -338,6 +338,10 @@ SHADER_RESOURCE_VIEW_DESC DefaultDesc(Resource* resource, const SHADER_RESOURCE_
   if (s.samples > 1) {
     d.ViewDimension = s.arraySize > 1 ? SRV_DIMENSION_TEXTURE2DMSARRAY : SRV_DIMENSION_TEXTURE2DMS;
     d.Texture2DMSArray = {0, s.arraySize};
+  } else if ((s.miscFlags & RESOURCE_MISC_TEXTURECUBE) && s.arraySize > 6) {
+    // The whole resource: every cube of a cube array, as the D3D11 runtime does.
+    d.ViewDimension = SRV_DIMENSION_TEXTURECUBEARRAY;
+    d.TextureCubeArray = {0, s.mipLevels, 0, s.arraySize / 6};
   } else if (s.miscFlags & RESOURCE_MISC_TEXTURECUBE) {
     d.ViewDimension = SRV_DIMENSION_TEXTURECUBE;
     d.TextureCube = {0, s.mipLevels};

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -180,6 +181,45 @@ TEST_F(TextureFilesTest, CubeMapFacesAreSampledAlongTheirAxes) {
       return t.SampleLevel(s, axes[uint(p.x)], 0); })",
                            6, 1);
   for (UINT face = 0; face < 6; ++face) ExpectNear(pixels, face, faces[face], "face " + std::to_string(face));
+  EXPECT_TRUE(Refusals().empty());
+}
+
+// A DX10 cube-map array (two cubes, one colour per cube and face) loads with a
+// TEXTURECUBEARRAY view of both cubes; each cube is sampled along each axis. The colours
+// are the written texels themselves (RGBA8, point sampling of a one-colour face).
+TEST_F(TextureFilesTest, CubeMapArrayLoadsWithACubeArrayViewOfEveryCube) {
+  constexpr UINT kCubes = 2;
+  auto colour = [](UINT cube, UINT face) { return std::array<uint8_t, 3>{uint8_t(40 * face), uint8_t(255 * cube), 100}; };
+  std::vector<uint8_t> texels;
+  for (UINT cube = 0; cube < kCubes; ++cube)
+    for (UINT face = 0; face < 6; ++face)
+      for (int texel = 0; texel < 4; ++texel) {
+        const auto c = colour(cube, face);
+        texels.insert(texels.end(), {c[0], c[1], c[2], 255});
+      }
+  const auto file = WriteDds({.width = 2, .height = 2, .format = kDx10, .dxgiFormat = rhi::DXGI_FORMAT_R8G8B8A8_UNORM,
+                              .miscFlag = 0x4 /* DDS_RESOURCE_MISC_TEXTURECUBE */, .arraySize = kCubes},
+                             texels);
+  ComPtr<rhi::ShaderResourceView> srv;
+  ASSERT_EQ(rhi::CreateDDSTextureFromMemory(device.Get(), file.data(), file.size(), nullptr, srv.GetAddressOf(), 0,
+                                            nullptr, &error),
+            rhi::S_OK)
+      << error;
+  rhi::SHADER_RESOURCE_VIEW_DESC view;
+  srv->GetDesc(&view);
+  EXPECT_EQ(view.ViewDimension, rhi::SRV_DIMENSION_TEXTURECUBEARRAY);
+  EXPECT_EQ(view.TextureCubeArray.NumCubes, kCubes);
+  const auto pixels = Draw(srv.Get(), R"(TextureCubeArray t : register(t0); SamplerState s : register(s0);
+    float4 main(float4 p : SV_Position) : SV_Target {
+      static const float3 axes[6] = {float3(1,0,0), float3(-1,0,0), float3(0,1,0), float3(0,-1,0), float3(0,0,1), float3(0,0,-1)};
+      return t.SampleLevel(s, float4(axes[uint(p.x)], uint(p.y)), 0); })",
+                           6, kCubes);
+  for (UINT cube = 0; cube < kCubes; ++cube)
+    for (UINT face = 0; face < 6; ++face) {
+      const auto c = colour(cube, face);
+      const uint8_t rgb[3] = {c[0], c[1], c[2]};
+      ExpectNear(pixels, cube * 6 + face, rgb, "cube " + std::to_string(cube) + " face " + std::to_string(face));
+    }
   EXPECT_TRUE(Refusals().empty());
 }
 

@@ -53,19 +53,15 @@ struct CreateFlags {
   UINT miscFlags = 0;
 };
 
-// The texture a DDS_TEXTURE describes (1D or 2D, arrays and cubes; decoded images are
-// described the same way) and, when asked, its whole-resource SRV.
+// The texture a DDS_TEXTURE describes (1D or 2D, arrays, cubes and cube arrays; decoded
+// images are described the same way) and, when asked, its whole-resource SRV (a
+// TEXTURECUBEARRAY view of every cube for a cube array).
 HRESULT CreateTexture(Device* device, const DDS_TEXTURE& dds, const std::string& name, const CreateFlags& flags,
                       Resource** texture, ShaderResourceView** textureView, std::string* error) {
   if (dds.Dimension == RESOURCE_DIMENSION_TEXTURE3D)
     return Fail(E_NOTIMPL,
                 name + ": a 3D (volume) texture, which the RHI cannot create yet (no CreateTexture3D); " +
                     std::to_string(dds.Width) + "x" + std::to_string(dds.Height) + "x" + std::to_string(dds.Depth),
-                error);
-  if (dds.IsCubeMap && dds.ArraySize > 1)
-    return Fail(E_NOTIMPL,
-                name + ": an array of " + std::to_string(dds.ArraySize) +
-                    " cube maps, which the RHI cannot view yet (no SRV_DIMENSION_TEXTURECUBEARRAY)",
                 error);
   const UINT slices = dds.ArraySize * (dds.IsCubeMap ? 6 : 1);
   ComPtr<Resource> resource;

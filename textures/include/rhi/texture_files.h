@@ -7,8 +7,8 @@
 // DDS: the legacy header (DXT1-5, ATI1/ATI2/BC4U/BC4S/BC5U/BC5S, the D3DFMT numbers of
 // float formats, RGB/luminance/alpha masks of the common 8/16/32-bit layouts) and the DX10
 // extension (any DXGI_FORMAT the RHI declares, BC1-BC7 included); 1D and 2D textures,
-// arrays, cube maps and mip chains. 3D (volume) textures and cube-map arrays are refused
-// with the reason: the RHI has no CreateTexture3D or TEXTURECUBEARRAY views yet.
+// arrays, cube maps, cube-map arrays (a TEXTURECUBEARRAY view) and mip chains. 3D (volume)
+// textures are refused with the reason: the RHI has no CreateTexture3D yet.
 // PNG, JPEG, TGA, BMP (through stb_image): 8-bit RGBA, UNORM or, with WIC_LOADER_FORCE_SRGB,
 // _SRGB; a context argument asks for a full mip chain (as DirectXTK's autogen), computed
 // on the CPU with a 2x2 box filter (in linear light for _SRGB).

@@ -38,7 +38,7 @@ void ContextImpl::IASetInputLayout(InputLayout* pInputLayout) {
   auto* layout = static_cast<InputLayoutImpl*>(pInputLayout);
   if (layout == inputLayout_.Get()) return;
   inputLayout_ = layout;
-  pipelineKey_.inputLayout = layout ? layout->serial() : 0;
+  pipelineKey_.inputLayout = layout ? layout->contentId() : 0;
   PipelineStateChanged();
 }
 
@@ -80,7 +80,7 @@ void ContextImpl::SetShader(ShaderStage stage, Bindable* object, const ShaderCod
   descriptorsDirty_ = true;
   if (stage == ShaderStage::Compute) return;
   // The key's shader slots are VS, HS, DS, GS, PS: the graphics stages in ShaderStage order.
-  pipelineKey_.shaders[static_cast<uint32_t>(stage)] = code ? code->serial : 0;
+  pipelineKey_.shaders[static_cast<uint32_t>(stage)] = code ? code->contentId : 0;
   PipelineStateChanged();
 }
 
@@ -199,7 +199,7 @@ void ContextImpl::RSSetState(RasterizerState* pRasterizerState) {
   auto* state = static_cast<RasterizerStateImpl*>(pRasterizerState);
   if (state == rasterizer_.Get()) return;
   rasterizer_ = state;
-  pipelineKey_.rasterizer = state ? state->serial() : 0;
+  pipelineKey_.rasterizer = state ? state->contentId() : 0;
   PipelineStateChanged();
   dynamicDirty_.viewport = true;  // ScissorEnable decides the scissor
 }
@@ -344,7 +344,7 @@ void ContextImpl::OMSetBlendState(BlendState* pBlendState, const FLOAT BlendFact
   if (state != blendState_.Get() || SampleMask != sampleMask_) {
     blendState_ = state;
     sampleMask_ = SampleMask;
-    pipelineKey_.blend = state ? state->serial() : 0;
+    pipelineKey_.blend = state ? state->contentId() : 0;
     pipelineKey_.sampleMask = SampleMask;
     PipelineStateChanged();
   }
@@ -360,7 +360,7 @@ void ContextImpl::OMSetDepthStencilState(DepthStencilState* pDepthStencilState, 
   auto* state = static_cast<DepthStencilStateImpl*>(pDepthStencilState);
   if (state != depthStencilState_.Get()) {
     depthStencilState_ = state;
-    pipelineKey_.depthStencil = state ? state->serial() : 0;
+    pipelineKey_.depthStencil = state ? state->contentId() : 0;
     PipelineStateChanged();
   }
   stencilRef_ = StencilRef;

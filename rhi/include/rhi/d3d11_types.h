@@ -48,6 +48,7 @@ inline constexpr UINT KEEP_RENDER_TARGETS_AND_DEPTH_STENCIL = 0xffffffffu;
 inline constexpr UINT KEEP_UNORDERED_ACCESS_VIEWS = 0xffffffffu;
 inline constexpr UINT VIEWPORT_AND_SCISSORRECT_OBJECT_COUNT_PER_PIPELINE = 16;
 inline constexpr UINT SO_BUFFER_SLOT_COUNT = 4;
+inline constexpr UINT CS_DISPATCH_MAX_THREAD_GROUPS_PER_DIMENSION = 65535;
 inline constexpr UINT SO_STREAM_COUNT = 4;
 inline constexpr UINT SO_NO_RASTERIZED_STREAM = 0xffffffffu;
 inline constexpr UINT APPEND_ALIGNED_ELEMENT = 0xffffffffu;

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <system_error>
 
@@ -11,6 +12,12 @@ namespace {
 
 std::string Quoted(std::string_view option, std::string_view text) {
   return std::string(option) + ": '" + std::string(text) + "'";
+}
+
+std::string Shortest(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
 }
 
 }  // namespace
@@ -36,7 +43,7 @@ std::optional<double> ParseNumber(std::string_view option, std::string_view text
   auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
   if (digits.empty() || ec != std::errc() || end != digits.data() + digits.size() || !std::isfinite(value) ||
       value < min || value > max) {
-    *error = Quoted(option, text) + " is not a number from " + std::to_string(min) + " to " + std::to_string(max);
+    *error = Quoted(option, text) + " is not a number from " + Shortest(min) + " to " + Shortest(max);
     return std::nullopt;
   }
   return value;
@@ -48,7 +55,7 @@ std::optional<std::vector<int64_t>> ParseIntegers(std::string_view option, std::
   std::string_view rest = text;
   for (size_t i = 0; i < count; ++i) {
     const size_t cut = i + 1 < count ? rest.find(separator) : rest.size();
-    if (cut == std::string_view::npos) {
+    if (cut == std::string_view::npos || (i + 1 == count && rest.find(separator) != std::string_view::npos)) {
       *error = Quoted(option, text) + " is not " + std::to_string(count) + " numbers separated by '" + separator + "'";
       return std::nullopt;
     }

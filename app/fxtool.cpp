@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cfloat>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -31,6 +32,7 @@
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb_image_write.h>
 
+#include "cli_args.h"
 #include "fx/effect.h"
 #include "fx/effect_parser.h"
 #include "fx/gs_isolation.h"
@@ -94,6 +96,27 @@ struct Options {
   std::exit(2);
 }
 
+// A bad value of an option: one line (cli_args.h says what was wrong), exit 2.
+[[noreturn]] void BadValue(const std::string& error) {
+  std::fprintf(stderr, "fxtool: %s\n", error.c_str());
+  std::exit(2);
+}
+
+int64_t ParseInteger(const std::string& s, const std::string& what, int64_t min, int64_t max) {
+  std::string error;
+  std::optional<int64_t> value = cli::ParseInteger(what, s, min, max, &error);
+  if (!value) BadValue(error);
+  return *value;
+}
+
+std::vector<int64_t> ParseIntegers(const std::string& s, const std::string& what, char separator, size_t count,
+                                   int64_t min, int64_t max) {
+  std::string error;
+  std::optional<std::vector<int64_t>> values = cli::ParseIntegers(what, s, separator, count, min, max, &error);
+  if (!values) BadValue(error);
+  return *values;
+}
+
 std::vector<std::string> Split(const std::string& s, char sep) {
   std::vector<std::string> out;
   std::string cur;
@@ -103,11 +126,12 @@ std::vector<std::string> Split(const std::string& s, char sep) {
   return out;
 }
 
+// A shader constant or clear value: any finite float.
 double ParseNumber(const std::string& s, const std::string& what) {
-  char* end = nullptr;
-  double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || *end != '\0') Usage("bad number '" + s + "' in " + what);
-  return v;
+  std::string error;
+  std::optional<double> value = cli::ParseNumber(what, s, -FLT_MAX, FLT_MAX, &error);
+  if (!value) BadValue(error);
+  return *value;
 }
 
 std::vector<double> ParseNumbers(const std::string& s, const std::string& what) {
@@ -135,18 +159,16 @@ Target ParseTarget(const std::string& spec) {
     for (const auto& f : fxtool::TargetFormats()) list += std::string(" ") + f.name;
     Usage("unsupported target format '" + parts[0] + "' (supported:" + list + ")");
   }
-  if (std::sscanf(parts[1].c_str(), "%ux%u", &t.width, &t.height) != 2 || t.width == 0 || t.height == 0 ||
-      t.width > 16384 || t.height > 16384)
-    Usage("bad target size '" + parts[1] + "'");
+  const std::vector<int64_t> size = ParseIntegers(parts[1], "--target size", 'x', 2, 1, 16384);
+  t.width = static_cast<unsigned>(size[0]);
+  t.height = static_cast<unsigned>(size[1]);
   for (size_t i = 2; i < parts.size(); ++i) {
     if (parts[i].rfind("clear=", 0) == 0) {
       std::vector<double> c = ParseNumbers(parts[i].substr(6), "--target clear");
       if (c.size() != 4) Usage("clear= wants 4 values");
       for (int k = 0; k < 4; ++k) t.clear[k] = static_cast<float>(c[k]);
     } else if (parts[i].rfind("samples=", 0) == 0) {
-      const double n = ParseNumber(parts[i].substr(8), "--target samples");
-      if (n < 1 || n > 32) Usage("samples= wants a count from 1 to 32");
-      t.samples = static_cast<unsigned>(n);
+      t.samples = static_cast<unsigned>(ParseIntegers(parts[i].substr(8), "--target samples", ',', 1, 1, 32)[0]);
       // D3D11 resolves only float, UNORM and sRGB formats (ResolveSubresource).
       if (t.samples > 1 && rhi::reference::IsUintFormat(t.format))
         Usage("samples= needs a format that can be resolved; " + t.formatName + " cannot");
@@ -156,6 +178,11 @@ Target ParseTarget(const std::string& spec) {
   }
   return t;
 }
+
+// Bounds of the counts the options take: vertices, points and buffer elements;
+// stream-output bytes (a 256 MiB buffer).
+constexpr int64_t kMaxElements = 1 << 24;
+constexpr int64_t kMaxSoBytes = int64_t(1) << 28;
 
 Options ParseArgs(int argc, char** argv) {
   Options o;
@@ -176,7 +203,7 @@ Options ParseArgs(int argc, char** argv) {
       o.defines.emplace_back(d.substr(0, eq), eq == std::string::npos ? "" : d.substr(eq + 1));
     } else if (a == "--technique") o.technique = value();
     else if (a == "--pass") o.pass = value();
-    else if (a == "--points") o.points = static_cast<int>(ParseNumber(value(), "--points"));
+    else if (a == "--points") o.points = static_cast<int>(ParseInteger(value(), a, 1, kMaxElements));
     else if (a == "--vertices") o.verticesFile = value();
     else if (a == "--target") o.targets.push_back(ParseTarget(value()));
     else if (a == "--sample-mask") {
@@ -206,16 +233,15 @@ Options ParseArgs(int argc, char** argv) {
       o.sets.emplace_back(s.substr(0, eq), ParseNumbers(s.substr(eq + 1), "--set"));
     } else if (a == "--out") o.outDir = value();
     else if (a == "--pixel") {
-      std::vector<double> p = ParseNumbers(value(), "--pixel");
-      if (p.size() != 2 || p[0] < 0 || p[1] < 0) Usage("--pixel wants x,y");
+      std::vector<int64_t> p = ParseIntegers(value(), a, ',', 2, 0, 16383);
       o.pixels.emplace_back(static_cast<unsigned>(p[0]), static_cast<unsigned>(p[1]));
     } else if (a == "--dispatch") {
-      std::vector<double> g = ParseNumbers(value(), "--dispatch");
-      if (g.size() != 3) Usage("--dispatch wants X,Y,Z");
+      // D3D11_CS_DISPATCH_MAX_THREAD_GROUPS_PER_DIMENSION bounds each count.
+      std::vector<int64_t> g = ParseIntegers(value(), a, ',', 3, 0, rhi::CS_DISPATCH_MAX_THREAD_GROUPS_PER_DIMENSION);
       o.dispatch = true;
       for (int k = 0; k < 3; ++k) o.groups[k] = static_cast<unsigned>(g[k]);
-    } else if (a == "--so-bytes") o.soBytes = static_cast<unsigned>(ParseNumber(value(), "--so-bytes"));
-    else if (a == "--so-vertices") o.soVertices = static_cast<unsigned>(ParseNumber(value(), "--so-vertices"));
+    } else if (a == "--so-bytes") o.soBytes = static_cast<unsigned>(ParseInteger(value(), a, 4, kMaxSoBytes));
+    else if (a == "--so-vertices") o.soVertices = static_cast<unsigned>(ParseInteger(value(), a, 0, kMaxElements));
     else if (a == "--topology") o.topology = value();
     else if (a == "--so-uint") {
       for (const std::string& sem : Split(value(), ',')) o.soUint.insert(sem);
@@ -224,8 +250,7 @@ Options ParseArgs(int argc, char** argv) {
       std::string b = value();
       size_t colon = b.find(':');
       if (colon == std::string::npos || colon == 0) Usage("--buffer wants NAME:ELEMENTS");
-      double n = ParseNumber(b.substr(colon + 1), "--buffer");
-      if (n < 1 || n > (1 << 24)) Usage("--buffer: ELEMENTS out of range");
+      const int64_t n = ParseInteger(b.substr(colon + 1), "--buffer ELEMENTS", 1, kMaxElements);
       o.buffers.emplace_back(b.substr(0, colon), static_cast<unsigned>(n));
     }
     else if (a == "--validation") o.validation = true;
@@ -1084,7 +1109,7 @@ int Run(const Options& o) {
     // Read back, save, print.
     std::string json = "{";
     bool firstKey = true;
-    if (!o.outDir.empty()) std::filesystem::create_directories(o.outDir);
+    if (std::string error; !o.outDir.empty() && !cli::MakeFolder("--out", o.outDir, &error)) BadValue(error);
     std::string storedJson;
     for (size_t i = 0; i < o.targets.size(); ++i) {
       std::vector<rhi::reference::Float4> pixels;

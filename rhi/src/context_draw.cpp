@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 
+#include "call_limits.h"
 #include "context.h"
 #include "pipelines.h"
 #include "queries.h"
@@ -499,6 +500,7 @@ void ContextImpl::BindCompute(const ComputePipeline& pipeline) {
 }
 
 void ContextImpl::Dispatch(UINT ThreadGroupCountX, UINT ThreadGroupCountY, UINT ThreadGroupCountZ) {
+  if (!DispatchAllowed(device_->gpu(), ThreadGroupCountX, ThreadGroupCountY, ThreadGroupCountZ)) return;
   const ComputePipeline* pipeline = PrepareDispatch("Dispatch");
   if (!pipeline) return;
   BindCompute(*pipeline);

@@ -3,8 +3,8 @@
 
 #include <atomic>
 #include <memory>
+#include <mutex>
 #include <string>
-#include <unordered_map>
 #include <utility>
 
 #include "gpu.h"
@@ -16,6 +16,7 @@ namespace rhi::vk {
 
 class ContextImpl;
 class PipelineCache;
+struct ObjectCaches;
 
 class DeviceImpl final : public Device {
  public:
@@ -91,10 +92,12 @@ class DeviceImpl final : public Device {
   HostSliceAllocator& hostSlices() { return *hostSlices_; }
   ContextImpl& context() { return *context_; }
   PipelineCache& pipelines() { return *pipelines_; }
-  uint64_t NextSerial() { return ++objectSerial_; }
-
-  // Deduplicated state objects forget themselves when their last reference goes.
-  void ForgetState(DeviceChild* object);
+  ObjectCaches& caches() { return *caches_; }
+  // Ids of object contents (pipeline keys): unique for the device's lifetime.
+  uint64_t NextContentId() { return ++lastContentId_; }
+  // Held by creation calls that record into the immediate context (initial
+  // data, image layouts), so that creation from many threads is safe.
+  std::mutex& creationRecordingMutex() { return creationRecordingMutex_; }
 
  private:
   DeviceImpl() = default;
@@ -105,12 +108,11 @@ class DeviceImpl final : public Device {
   std::unique_ptr<HostSliceAllocator> hostSlices_;
   std::unique_ptr<PipelineCache> pipelines_;
   std::unique_ptr<ContextImpl> context_;
-  std::atomic<uint64_t> objectSerial_{0};  // deferred contexts create command lists on their threads
   UINT exceptionMode_ = 0;  // SetExceptionMode
   PrivateDataStore privateData_;
-  // D3D11 returns the existing object for a desc equal to an earlier one once
-  // normalised. Keyed by states::KeyHash; values are weak.
-  std::unordered_multimap<uint64_t, DeviceChild*> stateCache_;
+  std::unique_ptr<ObjectCaches> caches_;
+  std::atomic<uint64_t> lastContentId_{0};
+  std::mutex creationRecordingMutex_;
 };
 
 // What the context's bindings hold on an object: it stays alive while bound,
@@ -119,9 +121,9 @@ class DeviceImpl final : public Device {
 // binding call.
 class Bindable {
  public:
-  void Bind() { ++bindings_; }
+  void Bind() { counts_.fetch_add(kOneBinding, std::memory_order_relaxed); }
   void Unbind() {
-    if (--bindings_ == 0 && references_ == 0) Destroy();
+    if (counts_.fetch_sub(kOneBinding, std::memory_order_acq_rel) == kOneBinding) Destroy();
   }
 
  protected:
@@ -129,8 +131,12 @@ class Bindable {
   // Deletes the object once neither the application nor a binding holds it.
   virtual void Destroy() = 0;
 
-  UINT references_ = 1;  // the application's references
-  UINT bindings_ = 0;    // the context's bindings
+  static constexpr uint64_t kOneBinding = uint64_t(1) << 32;
+  static UINT References(uint64_t counts) { return static_cast<UINT>(counts); }
+  // The application's references (low 32 bits) and the context's bindings
+  // (high 32 bits) in one atomic, as the device is free-threaded: exactly one
+  // thread sees the pair reach zero, and that one deletes the object.
+  std::atomic<uint64_t> counts_{1};
 };
 
 // D3D11's lifetime rules for device children: an object lives while the
@@ -141,21 +147,32 @@ class Bindable {
 template <class Interface>
 class DeviceChildImpl : public Interface, public Bindable {
  public:
-  explicit DeviceChildImpl(DeviceImpl* device) : device_(device), serial_(device->NextSerial()) {
+  explicit DeviceChildImpl(DeviceImpl* device) : device_(device) {
     device_->AddRef();  // for the creator's reference
   }
   UINT AddRef() override {
-    if (references_++ == 0) device_->AddRef();
-    return references_;
+    const uint64_t before = counts_.fetch_add(1, std::memory_order_relaxed);
+    if (References(before) == 0) device_->AddRef();
+    return References(before) + 1;
   }
   UINT Release() override {
-    const UINT left = --references_;
-    if (left == 0) {
-      DeviceImpl* device = device_;
-      if (bindings_ == 0) delete this;
+    DeviceImpl* device = device_;  // read first: another thread may delete the object once the count drops
+    const uint64_t before = counts_.fetch_sub(1, std::memory_order_acq_rel);
+    if (References(before) == 1) {
+      if (before == 1) delete this;
       device->Release();
     }
-    return left;
+    return References(before) - 1;
+  }
+  // AddRef, unless the object is already being deleted (no reference and no
+  // binding left): for caches that hold objects weakly.
+  bool TryAddRef() {
+    uint64_t counts = counts_.load(std::memory_order_relaxed);
+    do {
+      if (counts == 0) return false;
+    } while (!counts_.compare_exchange_weak(counts, counts + 1, std::memory_order_acquire, std::memory_order_relaxed));
+    if (References(counts) == 0) device_->AddRef();
+    return true;
   }
   void GetDevice(Device** ppDevice) override {
     device_->AddRef();
@@ -163,15 +180,12 @@ class DeviceChildImpl : public Interface, public Bindable {
   }
   DeviceImpl& device() const { return *device_; }
   Gpu& gpu() const { return device_->gpu(); }
-  // Unique for the device's lifetime: pipeline keys use it instead of pointers.
-  uint64_t serial() const { return serial_; }
 
  protected:
   void Destroy() override { delete this; }
 
  private:
   DeviceImpl* device_;
-  uint64_t serial_;
 };
 
 // A context binding (see Bindable).

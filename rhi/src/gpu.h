@@ -7,7 +7,9 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <atomic>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -135,12 +137,17 @@ class Gpu {
   // DEVICE_OPTIONS::InstanceExtensions (window-system integration for swap chains).
   std::vector<const char*> instanceExtensions_;
 
+  // The context's thread records and submits; objects released on any thread
+  // defer their destruction (the device is free-threaded). The mutex guards
+  // what both touch: changes of the submissions and their destroyWhenDone lists.
+  std::mutex submissionMutex_;
   std::unique_ptr<Submission> recording_;
   std::deque<std::unique_ptr<Submission>> inFlight_;
   std::vector<std::unique_ptr<Submission>> idle_;
   uint64_t recordingSerial_ = 1;
-  uint64_t completedSerial_ = 0;
-  bool deviceLost_ = false;
+  std::atomic<uint64_t> completedSerial_ = 0;
+  // Read from any thread (GetDeviceRemovedReason; the device is free-threaded).
+  std::atomic<bool> deviceLost_ = false;
   // Records a VK_ERROR_DEVICE_LOST (reported once).
   void NoteResult(VkResult result, const char* call);
 };

@@ -15,6 +15,14 @@ namespace rhi::vk {
 
 namespace {
 
+// Creation records its uploads and layout changes into the immediate context:
+// one creating thread at a time (the device is free-threaded).
+template <class Record>
+void UploadInitialData(DeviceImpl& device, Record&& record) {
+  std::lock_guard lock(device.creationRecordingMutex());
+  record(device.context());
+}
+
 std::string Hex(UINT value) {
   char text[16];
   std::snprintf(text, sizeof text, "0x%X", value);
@@ -140,7 +148,9 @@ HRESULT BufferImpl::Initialize(const SUBRESOURCE_DATA* initialData) {
     if (isStaging())
       std::memcpy(mapped_, initialData->pSysMem, desc_.ByteWidth);
     else
-      device().context().UploadBuffer(*this, 0, initialData->pSysMem, desc_.ByteWidth);
+      UploadInitialData(device(), [&](ContextImpl& context) {
+        context.UploadBuffer(*this, 0, initialData->pSysMem, desc_.ByteWidth);
+      });
   }
   return S_OK;
 }
@@ -295,10 +305,12 @@ HRESULT TextureStorage::Initialize(DeviceImpl& device, const TextureShape& shape
   device_ = &device;
   HRESULT hr = isStaging() ? CreateStagingBuffer(device) : CreateImage(device);
   if (FAILED(hr) || !initialData || !initialData->pSysMem) return hr;
-  for (UINT sub = 0; sub < subresourceCount(); ++sub) {
-    const SUBRESOURCE_DATA& data = initialData[sub];
-    device.context().UploadTexture(*this, sub, nullptr, data.pSysMem, data.SysMemPitch, data.SysMemSlicePitch);
-  }
+  UploadInitialData(device, [&](ContextImpl& context) {
+    for (UINT sub = 0; sub < subresourceCount(); ++sub) {
+      const SUBRESOURCE_DATA& data = initialData[sub];
+      context.UploadTexture(*this, sub, nullptr, data.pSysMem, data.SysMemPitch, data.SysMemSlicePitch);
+    }
+  });
   return S_OK;
 }
 
@@ -346,7 +358,7 @@ HRESULT TextureStorage::CreateImage(DeviceImpl& device) {
   result = gpu.AllocateFor(requirements, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, &memory_);
   if (result == VK_SUCCESS) result = vkBindImageMemory(gpu.Device(), image_, memory_, 0);
   if (result != VK_SUCCESS) return ToHresult(result);
-  device.context().InitializeImageLayout(*this);
+  UploadInitialData(device, [&](ContextImpl& context) { context.InitializeImageLayout(*this); });
   return S_OK;
 }
 

@@ -21,21 +21,51 @@ using HRESULT = int32_t;
 using LPCSTR = const char*;
 using SIZE_T = uint64_t;
 
+// TRUE, FALSE, SUCCEEDED, FAILED and the HRESULT codes are macros in the
+// platform's headers (<windows.h>, <winerror.h>, or DXVK's native ones). A port
+// that includes those too keeps their definitions, which have the same values,
+// and each name here steps aside (as DXVK's native headers do): the #ifndefs.
+#ifndef TRUE
 inline constexpr BOOL TRUE = 1;
+#endif
+#ifndef FALSE
 inline constexpr BOOL FALSE = 0;
+#endif
 
 // HRESULT values the runtime returns (the Windows values).
+#ifndef S_OK
 inline constexpr HRESULT S_OK = 0;
+#endif
+#ifndef S_FALSE
 inline constexpr HRESULT S_FALSE = 1;
+#endif
+#ifndef E_FAIL
 inline constexpr HRESULT E_FAIL = static_cast<HRESULT>(0x80004005u);
+#endif
+#ifndef E_INVALIDARG
 inline constexpr HRESULT E_INVALIDARG = static_cast<HRESULT>(0x80070057u);
+#endif
+#ifndef E_OUTOFMEMORY
 inline constexpr HRESULT E_OUTOFMEMORY = static_cast<HRESULT>(0x8007000Eu);
+#endif
+#ifndef E_NOTIMPL
 inline constexpr HRESULT E_NOTIMPL = static_cast<HRESULT>(0x80004001u);
+#endif
+#ifndef DXGI_ERROR_UNSUPPORTED
 inline constexpr HRESULT DXGI_ERROR_UNSUPPORTED = static_cast<HRESULT>(0x887A0004u);
+#endif
+#ifndef DXGI_ERROR_WAS_STILL_DRAWING
 inline constexpr HRESULT DXGI_ERROR_WAS_STILL_DRAWING = static_cast<HRESULT>(0x887A000Au);
+#endif
+#ifndef DXGI_ERROR_DEVICE_REMOVED
 inline constexpr HRESULT DXGI_ERROR_DEVICE_REMOVED = static_cast<HRESULT>(0x887A0005u);
+#endif
+#ifndef SUCCEEDED
 inline constexpr bool SUCCEEDED(HRESULT hr) { return hr >= 0; }
+#endif
+#ifndef FAILED
 inline constexpr bool FAILED(HRESULT hr) { return hr < 0; }
+#endif
 
 inline constexpr UINT SIMULTANEOUS_RENDER_TARGET_COUNT = 8;
 inline constexpr UINT IA_VERTEX_INPUT_RESOURCE_SLOT_COUNT = 32;
@@ -48,6 +78,7 @@ inline constexpr UINT KEEP_RENDER_TARGETS_AND_DEPTH_STENCIL = 0xffffffffu;
 inline constexpr UINT KEEP_UNORDERED_ACCESS_VIEWS = 0xffffffffu;
 inline constexpr UINT VIEWPORT_AND_SCISSORRECT_OBJECT_COUNT_PER_PIPELINE = 16;
 inline constexpr UINT SO_BUFFER_SLOT_COUNT = 4;
+inline constexpr UINT CS_DISPATCH_MAX_THREAD_GROUPS_PER_DIMENSION = 65535;
 inline constexpr UINT SO_STREAM_COUNT = 4;
 inline constexpr UINT SO_NO_RASTERIZED_STREAM = 0xffffffffu;
 inline constexpr UINT APPEND_ALIGNED_ELEMENT = 0xffffffffu;

@@ -2,8 +2,8 @@
 //
 //   fxtool info FILE.fx [-I dir] [-D NAME[=VALUE]]
 //   fxtool run  FILE.fx --technique T [--pass P] [--points N | --vertices FILE]
-//               [--target FORMAT:WxH[:clear=r,g,b,a]]... [--depth D32_FLOAT[:clear=1]]
-//               [--set name=v1,v2,...]... [--out DIR] [--pixel x,y]... [--dispatch X,Y,Z]
+//               [--target FORMAT:WxH[:clear=r,g,b,a][:samples=N]]... [--sample-mask M]
+//               [--depth D32_FLOAT[:clear=1]] [--texture NAME=FILE]... [--set name=v1,v2,...]... [--out DIR] [--pixel x,y]... [--dispatch X,Y,Z]
 //               [--buffer NAME:ELEMENTS]... [--so-bytes N] [--so-vertices N] [--so-uint SEM,...] [--topology NAME]
 //               [--validation] [-I dir] [-D NAME=VALUE]
 //
@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cfloat>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -31,6 +32,7 @@
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb_image_write.h>
 
+#include "cli_args.h"
 #include "fx/effect.h"
 #include "fx/effect_parser.h"
 #include "fx/gs_isolation.h"
@@ -38,6 +40,7 @@
 #include "fxtool_names.h"
 #include "hlsl/hlsl_compiler.h"
 #include "rhi/query_wait.h"
+#include "rhi/texture_files.h"
 #include "rhi/rhi.h"
 #include "rhi_reference/formats.h"
 
@@ -49,8 +52,8 @@ constexpr const char* kUsage =
     "usage:\n"
     "  fxtool info FILE.fx [-I dir] [-D NAME[=VALUE]]\n"
     "  fxtool run FILE.fx --technique T [--pass P] [--points N | --vertices FILE]\n"
-    "         [--target FORMAT:WxH[:clear=r,g,b,a]]... [--depth D32_FLOAT[:clear=1]]\n"
-    "         [--set name=v1,v2,...]... [--out DIR] [--pixel x,y]... [--dispatch X,Y,Z]\n"
+    "         [--target FORMAT:WxH[:clear=r,g,b,a][:samples=N]]... [--sample-mask M]\n"
+    "         [--depth D32_FLOAT[:clear=1]] [--texture NAME=FILE]... [--set name=v1,v2,...]... [--out DIR] [--pixel x,y]... [--dispatch X,Y,Z]\n"
     "         [--buffer NAME:ELEMENTS]... [--so-bytes N] [--so-vertices N] [--so-uint SEM,...] [--topology NAME]\n"
     "         [--validation]"
     " [-I dir] [-D NAME=VALUE]\n";
@@ -59,6 +62,7 @@ struct Target {
   std::string formatName;
   rhi::DXGI_FORMAT format = rhi::DXGI_FORMAT_R8G8B8A8_UNORM;
   unsigned width = 0, height = 0;
+  unsigned samples = 1;  // multisampled targets are resolved before they are read
   float clear[4] = {0, 0, 0, 0};
 };
 
@@ -70,6 +74,8 @@ struct Options {
   int points = -1;
   std::string verticesFile;
   std::vector<Target> targets;
+  std::optional<unsigned> sampleMask;  // --sample-mask: replaces the pass's SampleMask
+  std::vector<std::pair<std::string, std::string>> textures;  // --texture NAME=FILE
   bool depth = false;
   float depthClear = 1.0f;
   std::vector<std::pair<std::string, std::vector<double>>> sets;
@@ -90,6 +96,27 @@ struct Options {
   std::exit(2);
 }
 
+// A bad value of an option: one line (cli_args.h says what was wrong), exit 2.
+[[noreturn]] void BadValue(const std::string& error) {
+  std::fprintf(stderr, "fxtool: %s\n", error.c_str());
+  std::exit(2);
+}
+
+int64_t ParseInteger(const std::string& s, const std::string& what, int64_t min, int64_t max) {
+  std::string error;
+  std::optional<int64_t> value = cli::ParseInteger(what, s, min, max, &error);
+  if (!value) BadValue(error);
+  return *value;
+}
+
+std::vector<int64_t> ParseIntegers(const std::string& s, const std::string& what, char separator, size_t count,
+                                   int64_t min, int64_t max) {
+  std::string error;
+  std::optional<std::vector<int64_t>> values = cli::ParseIntegers(what, s, separator, count, min, max, &error);
+  if (!values) BadValue(error);
+  return *values;
+}
+
 std::vector<std::string> Split(const std::string& s, char sep) {
   std::vector<std::string> out;
   std::string cur;
@@ -99,11 +126,12 @@ std::vector<std::string> Split(const std::string& s, char sep) {
   return out;
 }
 
+// A shader constant or clear value: any finite float.
 double ParseNumber(const std::string& s, const std::string& what) {
-  char* end = nullptr;
-  double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || *end != '\0') Usage("bad number '" + s + "' in " + what);
-  return v;
+  std::string error;
+  std::optional<double> value = cli::ParseNumber(what, s, -FLT_MAX, FLT_MAX, &error);
+  if (!value) BadValue(error);
+  return *value;
 }
 
 std::vector<double> ParseNumbers(const std::string& s, const std::string& what) {
@@ -112,10 +140,11 @@ std::vector<double> ParseNumbers(const std::string& s, const std::string& what) 
   return out;
 }
 
-// FORMAT:WxH[:clear=r,g,b,a]
+// FORMAT:WxH[:clear=r,g,b,a][:samples=N]
 Target ParseTarget(const std::string& spec) {
   std::vector<std::string> parts = Split(spec, ':');
-  if (parts.size() < 2 || parts.size() > 3) Usage("--target wants FORMAT:WxH[:clear=r,g,b,a], got '" + spec + "'");
+  if (parts.size() < 2 || parts.size() > 4)
+    Usage("--target wants FORMAT:WxH[:clear=r,g,b,a][:samples=N], got '" + spec + "'");
   Target t;
   t.formatName = parts[0];
   bool known = false;
@@ -130,17 +159,30 @@ Target ParseTarget(const std::string& spec) {
     for (const auto& f : fxtool::TargetFormats()) list += std::string(" ") + f.name;
     Usage("unsupported target format '" + parts[0] + "' (supported:" + list + ")");
   }
-  if (std::sscanf(parts[1].c_str(), "%ux%u", &t.width, &t.height) != 2 || t.width == 0 || t.height == 0 ||
-      t.width > 16384 || t.height > 16384)
-    Usage("bad target size '" + parts[1] + "'");
-  if (parts.size() == 3) {
-    if (parts[2].rfind("clear=", 0) != 0) Usage("bad target option '" + parts[2] + "'");
-    std::vector<double> c = ParseNumbers(parts[2].substr(6), "--target clear");
-    if (c.size() != 4) Usage("clear= wants 4 values");
-    for (int i = 0; i < 4; ++i) t.clear[i] = static_cast<float>(c[i]);
+  const std::vector<int64_t> size = ParseIntegers(parts[1], "--target size", 'x', 2, 1, 16384);
+  t.width = static_cast<unsigned>(size[0]);
+  t.height = static_cast<unsigned>(size[1]);
+  for (size_t i = 2; i < parts.size(); ++i) {
+    if (parts[i].rfind("clear=", 0) == 0) {
+      std::vector<double> c = ParseNumbers(parts[i].substr(6), "--target clear");
+      if (c.size() != 4) Usage("clear= wants 4 values");
+      for (int k = 0; k < 4; ++k) t.clear[k] = static_cast<float>(c[k]);
+    } else if (parts[i].rfind("samples=", 0) == 0) {
+      t.samples = static_cast<unsigned>(ParseIntegers(parts[i].substr(8), "--target samples", ',', 1, 1, 32)[0]);
+      // D3D11 resolves only float, UNORM and sRGB formats (ResolveSubresource).
+      if (t.samples > 1 && rhi::reference::IsUintFormat(t.format))
+        Usage("samples= needs a format that can be resolved; " + t.formatName + " cannot");
+    } else {
+      Usage("bad target option '" + parts[i] + "'");
+    }
   }
   return t;
 }
+
+// Bounds of the counts the options take: vertices, points and buffer elements;
+// stream-output bytes (a 256 MiB buffer).
+constexpr int64_t kMaxElements = 1 << 24;
+constexpr int64_t kMaxSoBytes = int64_t(1) << 28;
 
 Options ParseArgs(int argc, char** argv) {
   Options o;
@@ -161,9 +203,21 @@ Options ParseArgs(int argc, char** argv) {
       o.defines.emplace_back(d.substr(0, eq), eq == std::string::npos ? "" : d.substr(eq + 1));
     } else if (a == "--technique") o.technique = value();
     else if (a == "--pass") o.pass = value();
-    else if (a == "--points") o.points = static_cast<int>(ParseNumber(value(), "--points"));
+    else if (a == "--points") o.points = static_cast<int>(ParseInteger(value(), a, 1, kMaxElements));
     else if (a == "--vertices") o.verticesFile = value();
     else if (a == "--target") o.targets.push_back(ParseTarget(value()));
+    else if (a == "--sample-mask") {
+      const std::string m = value();
+      char* end = nullptr;
+      const unsigned long mask = std::strtoul(m.c_str(), &end, 0);
+      if (m.empty() || *end != '\0' || mask > 0xFFFFFFFFul) Usage("--sample-mask wants a 32-bit number, got '" + m + "'");
+      o.sampleMask = static_cast<unsigned>(mask);
+    } else if (a == "--texture") {
+      const std::string t = value();
+      const size_t eq = t.find('=');
+      if (eq == std::string::npos || eq == 0 || eq + 1 == t.size()) Usage("--texture wants NAME=FILE, got '" + t + "'");
+      o.textures.emplace_back(t.substr(0, eq), t.substr(eq + 1));
+    }
     else if (a == "--depth") {
       std::vector<std::string> parts = Split(value(), ':');
       if (parts[0] != "D32_FLOAT") Usage("--depth supports D32_FLOAT only");
@@ -179,16 +233,15 @@ Options ParseArgs(int argc, char** argv) {
       o.sets.emplace_back(s.substr(0, eq), ParseNumbers(s.substr(eq + 1), "--set"));
     } else if (a == "--out") o.outDir = value();
     else if (a == "--pixel") {
-      std::vector<double> p = ParseNumbers(value(), "--pixel");
-      if (p.size() != 2 || p[0] < 0 || p[1] < 0) Usage("--pixel wants x,y");
+      std::vector<int64_t> p = ParseIntegers(value(), a, ',', 2, 0, 16383);
       o.pixels.emplace_back(static_cast<unsigned>(p[0]), static_cast<unsigned>(p[1]));
     } else if (a == "--dispatch") {
-      std::vector<double> g = ParseNumbers(value(), "--dispatch");
-      if (g.size() != 3) Usage("--dispatch wants X,Y,Z");
+      // D3D11_CS_DISPATCH_MAX_THREAD_GROUPS_PER_DIMENSION bounds each count.
+      std::vector<int64_t> g = ParseIntegers(value(), a, ',', 3, 0, rhi::CS_DISPATCH_MAX_THREAD_GROUPS_PER_DIMENSION);
       o.dispatch = true;
       for (int k = 0; k < 3; ++k) o.groups[k] = static_cast<unsigned>(g[k]);
-    } else if (a == "--so-bytes") o.soBytes = static_cast<unsigned>(ParseNumber(value(), "--so-bytes"));
-    else if (a == "--so-vertices") o.soVertices = static_cast<unsigned>(ParseNumber(value(), "--so-vertices"));
+    } else if (a == "--so-bytes") o.soBytes = static_cast<unsigned>(ParseInteger(value(), a, 4, kMaxSoBytes));
+    else if (a == "--so-vertices") o.soVertices = static_cast<unsigned>(ParseInteger(value(), a, 0, kMaxElements));
     else if (a == "--topology") o.topology = value();
     else if (a == "--so-uint") {
       for (const std::string& sem : Split(value(), ',')) o.soUint.insert(sem);
@@ -197,8 +250,7 @@ Options ParseArgs(int argc, char** argv) {
       std::string b = value();
       size_t colon = b.find(':');
       if (colon == std::string::npos || colon == 0) Usage("--buffer wants NAME:ELEMENTS");
-      double n = ParseNumber(b.substr(colon + 1), "--buffer");
-      if (n < 1 || n > (1 << 24)) Usage("--buffer: ELEMENTS out of range");
+      const int64_t n = ParseInteger(b.substr(colon + 1), "--buffer ELEMENTS", 1, kMaxElements);
       o.buffers.emplace_back(b.substr(0, colon), static_cast<unsigned>(n));
     }
     else if (a == "--validation") o.validation = true;
@@ -629,6 +681,15 @@ bool ReadBack(rhi::Device* device, rhi::DeviceContext* ctx, const Target& t, rhi
               std::vector<rhi::reference::Float4>* pixels, std::vector<rhi::reference::StoredColor>* stored) {
   rhi::TEXTURE2D_DESC desc{};
   texture->GetDesc(&desc);
+  ComPtr<rhi::Texture2D> resolved;  // a multisampled target: the average of its samples
+  if (desc.SampleDesc.Count > 1) {
+    desc.SampleDesc = {1, 0};
+    desc.BindFlags = rhi::BIND_RENDER_TARGET;
+    if (!Check(device->CreateTexture2D(&desc, nullptr, resolved.GetAddressOf()), "CreateTexture2D(resolve)"))
+      return false;
+    ctx->ResolveSubresource(resolved.Get(), 0, texture, 0, desc.Format);
+    texture = resolved.Get();
+  }
   desc.Usage = rhi::USAGE_STAGING;
   desc.BindFlags = 0;
   desc.CPUAccessFlags = rhi::CPU_ACCESS_READ;
@@ -742,6 +803,24 @@ int Run(const Options& o) {
     }
     for (const auto& [name, values] : o.sets)
       if (!SetVariable(effect.Get(), name, values)) return 1;
+    // --texture NAME=FILE: DDS, PNG, JPEG, TGA or BMP (rhi/texture_files.h), with its mip chain.
+    std::vector<ComPtr<rhi::ShaderResourceView>> textures;
+    for (const auto& [name, file] : o.textures) {
+      fx::EffectShaderResourceVariable* var = effect->GetVariableByName(name.c_str())->AsShaderResource();
+      if (!var->IsValid()) {
+        std::fprintf(stderr, "fxtool: error: --texture %s: the effect has no shader-resource variable '%s'\n",
+                     name.c_str(), name.c_str());
+        return 1;
+      }
+      std::string error;
+      ComPtr<rhi::ShaderResourceView>& srv = textures.emplace_back();
+      if (rhi::FAILED(rhi::CreateTextureFromFile(device.Get(), ctx.Get(), file, rhi::WIC_LOADER_DEFAULT, nullptr,
+                                                 srv.GetAddressOf(), &error))) {
+        std::fprintf(stderr, "fxtool: error: --texture %s: %s\n", name.c_str(), error.c_str());
+        return 1;
+      }
+      if (!Check(var->SetResource(srv.Get()), "SetResource")) return 1;
+    }
 
     // Targets: render targets, or (for a compute pass) UAVs bound to the effect's
     // RWTexture2D variables in declaration order.
@@ -766,6 +845,7 @@ int Run(const Options& o) {
       desc.MipLevels = 1;
       desc.ArraySize = 1;
       desc.Format = t.format;
+      desc.SampleDesc = {t.samples, 0};
       desc.Usage = rhi::USAGE_DEFAULT;
       desc.BindFlags = (anyGraphics ? rhi::BIND_RENDER_TARGET : 0u) |
                        (anyCompute && i < rwTextures.size() ? rhi::BIND_UNORDERED_ACCESS : 0u);
@@ -914,6 +994,12 @@ int Run(const Options& o) {
       ctx->GSSetShader(nullptr, nullptr, 0);
       ctx->PSSetShader(nullptr, nullptr, 0);
       if (!Check(pass->Apply(0, ctx.Get()), "EffectPass::Apply")) return 1;
+      if (o.sampleMask) {  // the pass's blend state and factor with --sample-mask's mask
+        ComPtr<rhi::BlendState> blend;
+        rhi::FLOAT factor[4];
+        ctx->OMGetBlendState(blend.GetAddressOf(), factor, nullptr);
+        ctx->OMSetBlendState(blend.Get(), factor, *o.sampleMask);
+      }
 
       rhi::PRIMITIVE_TOPOLOGY topology = rhi::PRIMITIVE_TOPOLOGY_TRIANGLELIST;
       unsigned count = 3;
@@ -1023,7 +1109,7 @@ int Run(const Options& o) {
     // Read back, save, print.
     std::string json = "{";
     bool firstKey = true;
-    if (!o.outDir.empty()) std::filesystem::create_directories(o.outDir);
+    if (std::string error; !o.outDir.empty() && !cli::MakeFolder("--out", o.outDir, &error)) BadValue(error);
     std::string storedJson;
     for (size_t i = 0; i < o.targets.size(); ++i) {
       std::vector<rhi::reference::Float4> pixels;

@@ -2,11 +2,14 @@
 #pragma once
 
 #include <cstdio>
+#include <cstring>
 #include <string>
 #include <vector>
 
 #include "fx/effect_ast.h"
 #include "rhi/d3d11_types.h"
+#include "rhi/format_info.h"
+#include "rhi_reference/formats.h"
 
 namespace fxtool {
 
@@ -139,22 +142,20 @@ struct FormatName {
   rhi::DXGI_FORMAT format;
 };
 
-// The render-target formats fxtool reads back (those rhi::reference decodes).
+// The render-target formats fxtool accepts: every typed format the RHI's format table
+// lets one render to (rhi::FormatBindFlags) that rhi::reference can decode for printing.
 inline const std::vector<FormatName>& TargetFormats() {
-  static const std::vector<FormatName> formats = {
-      {"R8G8B8A8_UNORM", rhi::DXGI_FORMAT_R8G8B8A8_UNORM},
-      {"R8G8B8A8_UNORM_SRGB", rhi::DXGI_FORMAT_R8G8B8A8_UNORM_SRGB},
-      {"B8G8R8A8_UNORM", rhi::DXGI_FORMAT_B8G8R8A8_UNORM},
-      {"R10G10B10A2_UNORM", rhi::DXGI_FORMAT_R10G10B10A2_UNORM},
-      {"R16G16B16A16_FLOAT", rhi::DXGI_FORMAT_R16G16B16A16_FLOAT},
-      {"R32G32B32A32_FLOAT", rhi::DXGI_FORMAT_R32G32B32A32_FLOAT},
-      {"R16G16_FLOAT", rhi::DXGI_FORMAT_R16G16_FLOAT},
-      {"R8_UNORM", rhi::DXGI_FORMAT_R8_UNORM},
-      {"R16_FLOAT", rhi::DXGI_FORMAT_R16_FLOAT},
-      {"R32_FLOAT", rhi::DXGI_FORMAT_R32_FLOAT},
-      {"R32_UINT", rhi::DXGI_FORMAT_R32_UINT},
-      {"R32G32B32A32_UINT", rhi::DXGI_FORMAT_R32G32B32A32_UINT},
-  };
+  static const std::vector<FormatName> formats = [] {
+    std::vector<FormatName> list;
+    for (rhi::UINT value = 1; value < 256; ++value) {
+      const auto format = static_cast<rhi::DXGI_FORMAT>(value);
+      if (!(rhi::FormatBindFlags(format) & rhi::BIND_RENDER_TARGET) || rhi::IsTypeless(format) ||
+          !rhi::reference::IsReferenceFormat(format))
+        continue;
+      list.push_back({rhi::FormatName(format) + std::strlen("DXGI_FORMAT_"), format});
+    }
+    return list;
+  }();
   return formats;
 }
 

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <vector>
 
+#include "fx/shader_directory.h"
 #include "hlsl/hlsl_compiler.h"
 
 using rhi::ComPtr;
@@ -14,7 +15,6 @@ using rhi::UINT;
 
 namespace {
 
-const char* const kShaderPath = PROJECT_SOURCE_ROOT "/shaders_hlsl/imgui.hlsl";
 
 struct BackendData {
   rhi::Device* device = nullptr;
@@ -42,7 +42,7 @@ BackendData* GetBackendData() {
 }
 
 bool Compile(const char* entry, const char* profile, std::vector<uint32_t>* spirv, std::string* error) {
-  hlsl::CompileResult result = hlsl::CompileHlslFile(kShaderPath, entry, profile);
+  hlsl::CompileResult result = hlsl::CompileHlslFile(fx::ShaderDirectory() + "/imgui.hlsl", entry, profile);
   if (!result.ok) {
     *error = result.FormatErrors();
     return false;

@@ -32,9 +32,12 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "cli_args.h"
+#include "fx/shader_directory.h"
 #include "hlsl/hlsl_compiler.h"
 #include "rhi/capture.h"
 #include "rhi/query_wait.h"
@@ -194,7 +197,7 @@ class Demo {
   explicit Demo(rhi::Device* device, rhi::DeviceContext* context) : device_(device), context_(context) {}
 
   void Initialize() {
-    const std::string shaderPath = std::string(PROJECT_SOURCE_ROOT) + "/shaders_hlsl/scene.hlsl";
+    const std::string shaderPath = fx::ShaderDirectory() + "/scene.hlsl";
     std::vector<uint32_t> vsCode = Compile(shaderPath, "VSMain", "vs_5_0");
     std::vector<uint32_t> psCode = Compile(shaderPath, "PSMain", "ps_5_0");
     Check(device_->CreateVertexShader(vsCode.data(), vsCode.size() * 4, nullptr, vs_.GetAddressOf()),
@@ -466,8 +469,7 @@ int RunHeadless(rhi::Device* device, rhi::DeviceContext* ctx, const std::string&
   demo.Render();
   std::vector<uint8_t> pixels = demo.ReadBack();
   if (gErrorMessages > 0) Fail("the RHI reported errors (see above)");
-  std::error_code ec;
-  std::filesystem::create_directories(outDir, ec);
+  if (std::string error; !cli::MakeFolder("--out", outDir, &error)) Fail(error);
   const std::string path = (std::filesystem::path(outDir) / "demo_scene.png").string();
   if (!stbi_write_png(path.c_str(), demo::kWidth, demo::kHeight, 4, pixels.data(), demo::kWidth * 4))
     Fail("cannot write " + path);
@@ -533,6 +535,14 @@ int RunWindowed(rhi::Device* device, rhi::DeviceContext* ctx, GLFWwindow* window
   return 0;
 }
 
+// A frame count option's value: 1 to 1,000,000, else a one-line failure.
+int FrameCount(const std::string& option, const std::string& text) {
+  std::string error;
+  std::optional<int64_t> frames = cli::ParseInteger(option, text, 1, 1000000, &error);
+  if (!frames) Fail(error);
+  return static_cast<int>(*frames);
+}
+
 void Usage() {
   std::fprintf(stderr,
                "usage: demo [--headless --out DIR [--bench N]] [--frames N] [--test-resize] [--validation]\n"
@@ -560,8 +570,8 @@ int main(int argc, char** argv) {
     };
     if (arg == "--headless") headless = true;
     else if (arg == "--out") outDir = value();
-    else if (arg == "--bench") benchFrames = std::atoi(value().c_str());
-    else if (arg == "--frames") maxFrames = std::atoi(value().c_str());
+    else if (arg == "--bench") benchFrames = FrameCount(arg, value());
+    else if (arg == "--frames") maxFrames = FrameCount(arg, value());
     else if (arg == "--validation") validation = true;
     else if (arg == "--test-resize") testResize = true;
     else if (arg == "--help" || arg == "-h") { Usage(); return 0; }

@@ -70,9 +70,11 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "cli_args.h"
 #include "compare_report.h"
 #include "renderer/comparison.h"
 #include "renderer/translucency.h"
@@ -88,6 +90,27 @@ int gErrors = 0;
 [[noreturn]] void Fail(const std::string& what) {
   std::fprintf(stderr, "replay: %s\n", what.c_str());
   std::exit(1);
+}
+
+// The integer an option's value spells, in [min, max], else a one-line failure.
+int64_t IntegerOption(const std::string& option, const std::string& text, int64_t min, int64_t max) {
+  std::string error;
+  std::optional<int64_t> value = cli::ParseInteger(option, text, min, max, &error);
+  if (!value) Fail(error);
+  return *value;
+}
+
+// WxH for --size.
+void SizeOption(const std::string& text, uint32_t* width, uint32_t* height) {
+  std::string error;
+  std::optional<std::vector<int64_t>> size = cli::ParseIntegers("--size", text, 'x', 2, 1, 16384, &error);
+  if (!size) Fail(error);
+  *width = static_cast<uint32_t>((*size)[0]);
+  *height = static_cast<uint32_t>((*size)[1]);
+}
+
+void MakeOutFolder(const std::string& folder) {
+  if (std::string error; !cli::MakeFolder("--out", folder, &error)) Fail(error);
 }
 
 struct Options {
@@ -171,7 +194,7 @@ int RunOne(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
   s.showLayer = o.layer;
   const int frames = Frames(o, o.demo);
   auto t = Make(device, ctx, s);
-  std::filesystem::create_directories(o.out);
+  MakeOutFolder(o.out);
   for (int i = 0; i < frames; ++i) {
     Render(*t, *o.method);
     if (o.allFrames || i == frames - 1) {
@@ -405,7 +428,7 @@ void WriteWboitMsaaFigures(rhi::Device* device, rhi::DeviceContext* ctx, const O
 }
 
 int RunFigures(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
-  std::filesystem::create_directories(o.out);
+  MakeOutFolder(o.out);
   if (o.document == "001") return WriteWboitMsaaFigures(device, ctx, o), 0;
   if (o.document == "003") return WriteMomentFigures(device, ctx, o), 0;
   std::printf("%-10s %-20s %10s %10s\n", "demo", "method", "RMSE", "PSNR dB");
@@ -628,7 +651,7 @@ int RunCompare(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o, c
     std::fflush(stdout);
   };
   if (!renderer::CompareMethods(device, ctx, run.settings, &scenes, &error, progress)) Fail(error);
-  std::filesystem::create_directories(o.out);
+  MakeOutFolder(o.out);
   const std::filesystem::path out(o.out);
   if (!WriteComparisonMarkdown((out / "comparison.md").string(), run, scenes, &error) ||
       !WriteCompareGrid((out / "compare_grid.png").string(), run, scenes, &error) ||
@@ -652,6 +675,10 @@ int RunCompare(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o, c
 
 }  // namespace
 
+// Bounds of the counts the options take.
+constexpr int64_t kMaxFrames = 1000000;
+constexpr int64_t kMaxLayers = 64;
+
 int main(int argc, char** argv) {
   if (ReplayWindowRequested(argc, argv)) return RunReplayWindow(argc, argv);  // replay --window: app/replay_window.cpp
   Options o;
@@ -672,11 +699,9 @@ int main(int argc, char** argv) {
     } else if (a == "--list-scenes") {
       o.listScenes = true;
     } else if (a == "--frames") {
-      o.frames = std::atoi(next().c_str());
+      o.frames = static_cast<int>(IntegerOption(a, next(), 1, kMaxFrames));
     } else if (a == "--size") {
-      std::string v = next();
-      if (std::sscanf(v.c_str(), "%ux%u", &o.width, &o.height) != 2 || !o.width || !o.height)
-        Fail("--size takes WxH");
+      SizeOption(next(), &o.width, &o.height);
     } else if (a == "--out") {
       o.out = next();
     } else if (a == "--figures") {
@@ -692,11 +717,11 @@ int main(int argc, char** argv) {
     } else if (a == "--scene") {
       o.scene = next();
     } else if (a == "--warmup") {
-      o.warmup = std::atoi(next().c_str());
+      o.warmup = static_cast<int>(IntegerOption(a, next(), 0, kMaxFrames));
     } else if (a == "--all-frames") {
       o.allFrames = true;
     } else if (a == "--peel-layers") {
-      o.peelLayers = uint32_t(std::atoi(next().c_str()));
+      o.peelLayers = static_cast<uint32_t>(IntegerOption(a, next(), 1, kMaxLayers));
       o.peelLayersGiven = true;
     } else if (a == "--fragment-sizing") {
       const std::string v = next();
@@ -705,14 +730,16 @@ int main(int argc, char** argv) {
                                  : v == "late" ? renderer::oit::FragmentSizing::Late
                                                : renderer::oit::FragmentSizing::GrowAndRedraw;
     } else if (a == "--min-depth-slope") {
-      o.minDepthSlope = float(std::atof(next().c_str()));
-      if (!(o.minDepthSlope > 0)) Fail("--min-depth-slope takes a positive m (per scene unit of view depth)");
+      // m per scene unit of view depth (document 003 sweeps 1 to 200)
+      std::string error;
+      const std::optional<double> m = cli::ParseNumber(a, next(), 1e-3, 1e6, &error);
+      if (!m) Fail(error);
+      o.minDepthSlope = float(*m);
     } else if (a == "--msaa") {
-      o.msaaSamples = uint32_t(std::atoi(next().c_str()));
+      o.msaaSamples = static_cast<uint32_t>(IntegerOption(a, next(), 4, 8));
       if (o.msaaSamples != 4 && o.msaaSamples != 8) Fail("--msaa takes 4 or 8 (samples per pixel)");
     } else if (a == "--layer") {
-      o.layer = std::atoi(next().c_str());
-      if (o.layer < 0) Fail("--layer takes a layer number, 0 the nearest");
+      o.layer = static_cast<int>(IntegerOption(a, next(), 0, kMaxLayers - 1));  // 0: the nearest
     } else {
       Fail("unknown argument " + a +
            "\nusage: replay --demo SCENE --method METHOD [--frames N] [--size WxH] [--peel-layers N] [--layer K]"

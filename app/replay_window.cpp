@@ -57,6 +57,8 @@
 #include <string>
 #include <vector>
 
+#include "cli_args.h"
+#include "fx/shader_directory.h"
 #include "hlsl/hlsl_compiler.h"
 #include "imgui_rhi.h"
 #include "renderer/translucency.h"
@@ -113,12 +115,18 @@ bool ParseOptions(int argc, char** argv, Options* o, std::string* error) {
       if (!next(&v) || !(o->method = renderer::oit::FindMethod(v)))
         return *error = "--method takes a method: " + renderer::oit::MethodNames(), false;
     } else if (a == "--size") {
-      if (!next(&v) || std::sscanf(v.c_str(), "%ux%u", &o->width, &o->height) != 2 || !o->width || !o->height)
-        return *error = "--size takes WxH", false;
+      if (!next(&v)) return *error = "--size takes WxH", false;
+      std::optional<std::vector<int64_t>> size = cli::ParseIntegers(a, v, 'x', 2, 1, 16384, error);
+      if (!size) return false;
+      o->width = static_cast<uint32_t>((*size)[0]);
+      o->height = static_cast<uint32_t>((*size)[1]);
     } else if (a == "--screenshot") {
       if (!next(&o->screenshot)) return *error = "--screenshot takes a path", false;
     } else if (a == "--frames") {
-      if (!next(&v) || (o->frames = std::atoi(v.c_str())) <= 0) return *error = "--frames takes N > 0", false;
+      if (!next(&v)) return *error = "--frames takes N > 0", false;
+      std::optional<int64_t> frames = cli::ParseInteger(a, v, 1, 1000000, error);
+      if (!frames) return false;
+      o->frames = static_cast<int>(*frames);
     } else if (a == "--validation") {
       o->validation = true;
     } else if (a == "--test-resize") {
@@ -133,7 +141,7 @@ bool ParseOptions(int argc, char** argv, Options* o, std::string* error) {
 
 bool Compile(const char* entry, const char* profile, std::vector<uint32_t>* spirv) {
   hlsl::CompileResult result =
-      hlsl::CompileHlslFile(PROJECT_SOURCE_ROOT "/shaders_hlsl/imgui.hlsl", entry, profile);
+      hlsl::CompileHlslFile(fx::ShaderDirectory() + "/imgui.hlsl", entry, profile);
   if (!result.ok) {
     std::fprintf(stderr, "%s", result.FormatErrors().c_str());
     return false;

@@ -1,11 +1,10 @@
 #include "renderer/effect_files.h"
 
+#include "fx/shader_directory.h"
+
 namespace renderer {
 
-const std::string& ShaderDirectory() {
-  static const std::string directory = PROJECT_SOURCE_ROOT "/shaders_hlsl";
-  return directory;
-}
+const std::string& ShaderDirectory() { return fx::ShaderDirectory(); }
 
 rhi::ComPtr<fx::Effect> LoadEffect(rhi::Device* device, const std::string& file, const EffectDefines& defines,
                                    std::string* error) {

@@ -65,9 +65,12 @@ HRESULT CaptureTexture2D(Device* device, DeviceContext* context, Texture2D* sour
   context->CopySubresourceRegion(staging.Get(), 0, 0, 0, 0, source, subresource, nullptr);
   MAPPED_SUBRESOURCE mapped{};
   if (HRESULT hr = context->Map(staging.Get(), 0, MAP_READ, 0, &mapped); FAILED(hr)) return hr;
-  const size_t rowBytes = size_t(desc.Width) * states::GetFormatInfo(desc.Format)->bytesPerElement;
-  texels->resize(rowBytes * desc.Height);
-  for (UINT y = 0; y < desc.Height; ++y)
+  // Block-compressed textures come back as their blocks, a row of blocks per 4 texel rows.
+  const states::FormatInfo& format = *states::GetFormatInfo(desc.Format);
+  const size_t rowBytes = states::RowPitchBytes(format, desc.Width);
+  const UINT rows = states::RowCount(format, desc.Height);
+  texels->resize(rowBytes * rows);
+  for (UINT y = 0; y < rows; ++y)
     std::memcpy(texels->data() + y * rowBytes, static_cast<const uint8_t*>(mapped.pData) + size_t(y) * mapped.RowPitch,
                 rowBytes);
   context->Unmap(staging.Get(), 0);

@@ -58,6 +58,26 @@ class ContextImpl final : public DeviceContext {
                           const UINT* pOffsets) override;
   void IASetIndexBuffer(Buffer* pIndexBuffer, DXGI_FORMAT Format, UINT Offset) override;
   void IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY Topology) override;
+  // The getters (context_getters.cpp).
+  void IAGetInputLayout(InputLayout** ppInputLayout) override;
+  void IAGetVertexBuffers(UINT StartSlot, UINT NumBuffers, Buffer** ppVertexBuffers, UINT* pStrides,
+                          UINT* pOffsets) override;
+  void IAGetIndexBuffer(Buffer** pIndexBuffer, DXGI_FORMAT* Format, UINT* Offset) override;
+  void IAGetPrimitiveTopology(PRIMITIVE_TOPOLOGY* pTopology) override;
+  void VSGetShader(VertexShader** ppShader, ClassInstance** ppClassInstances, UINT* pNumClassInstances) override;
+  void HSGetShader(HullShader** ppShader, ClassInstance** ppClassInstances, UINT* pNumClassInstances) override;
+  void DSGetShader(DomainShader** ppShader, ClassInstance** ppClassInstances, UINT* pNumClassInstances) override;
+  void GSGetShader(GeometryShader** ppShader, ClassInstance** ppClassInstances, UINT* pNumClassInstances) override;
+  void PSGetShader(PixelShader** ppShader, ClassInstance** ppClassInstances, UINT* pNumClassInstances) override;
+  void CSGetShader(ComputeShader** ppShader, ClassInstance** ppClassInstances, UINT* pNumClassInstances) override;
+  void CSGetUnorderedAccessViews(UINT StartSlot, UINT NumUAVs, UnorderedAccessView** ppUnorderedAccessViews) override;
+  void RSGetState(RasterizerState** ppRasterizerState) override;
+  void RSGetViewports(UINT* pNumViewports, VIEWPORT* pViewports) override;
+  void RSGetScissorRects(UINT* pNumRects, RECT* pRects) override;
+  void OMGetRenderTargets(UINT NumViews, RenderTargetView** ppRenderTargetViews,
+                          DepthStencilView** ppDepthStencilView) override;
+  void OMGetBlendState(BlendState** ppBlendState, FLOAT BlendFactor[4], UINT* pSampleMask) override;
+  void OMGetDepthStencilState(DepthStencilState** ppDepthStencilState, UINT* pStencilRef) override;
 
   void VSSetShader(VertexShader* pShader, ClassInstance* const*, UINT) override;
   void HSSetShader(HullShader* pShader, ClassInstance* const*, UINT) override;
@@ -75,6 +95,15 @@ class ContextImpl final : public DeviceContext {
   }                                                                                                       \
   void Prefix##SetSamplers(UINT StartSlot, UINT NumSamplers, SamplerState* const* ppSamplers) override {  \
     SetSamplers(ShaderStage::Stage, StartSlot, NumSamplers, ppSamplers);                                 \
+  }                                                                                                       \
+  void Prefix##GetConstantBuffers(UINT StartSlot, UINT NumBuffers, Buffer** ppBuffers) override {         \
+    GetConstantBuffers(ShaderStage::Stage, StartSlot, NumBuffers, ppBuffers);                            \
+  }                                                                                                       \
+  void Prefix##GetShaderResources(UINT StartSlot, UINT NumViews, ShaderResourceView** ppViews) override { \
+    GetShaderResources(ShaderStage::Stage, StartSlot, NumViews, ppViews);                                \
+  }                                                                                                       \
+  void Prefix##GetSamplers(UINT StartSlot, UINT NumSamplers, SamplerState** ppSamplers) override {        \
+    GetSamplers(ShaderStage::Stage, StartSlot, NumSamplers, ppSamplers);                                 \
   }
   RHI_STAGE_BINDINGS(VS, Vertex)
   RHI_STAGE_BINDINGS(HS, Hull)
@@ -134,13 +163,22 @@ class ContextImpl final : public DeviceContext {
   void ResolveSubresource(Resource* pDstResource, UINT DstSubresource, Resource* pSrcResource,
                           UINT SrcSubresource, DXGI_FORMAT Format) override;
   void CopyStructureCount(Buffer* pDstBuffer, UINT DstAlignedByteOffset, UnorderedAccessView* pSrcView) override;
+  void GenerateMips(ShaderResourceView* pShaderResourceView) override;  // texture_misc.cpp
 
   void Begin(Asynchronous* pAsync) override;
   void End(Asynchronous* pAsync) override;
   HRESULT GetData(Asynchronous* pAsync, void* pData, UINT DataSize, UINT GetDataFlags) override;
+  // predication.cpp
+  void SetPredication(Predicate* pPredicate, BOOL PredicateValue) override;
+  void GetPredication(Predicate** ppPredicate, BOOL* pPredicateValue) override;
 
   void ClearState() override;
   void Flush() override;
+  DEVICE_CONTEXT_TYPE GetType() override { return DEVICE_CONTEXT_IMMEDIATE; }
+  UINT GetContextFlags() override { return 0; }
+  // deferred_context.cpp
+  void ExecuteCommandList(CommandList* pCommandList, BOOL RestoreContextState) override;
+  HRESULT FinishCommandList(BOOL RestoreDeferredContextState, CommandList** ppCommandList) override;
   // Debug-utils labels (context_annotations.cpp).
   void BeginEvent(const char* name) override;
   void EndEvent() override;
@@ -196,6 +234,9 @@ class ContextImpl final : public DeviceContext {
   void SetConstantBuffers(ShaderStage stage, UINT start, UINT count, Buffer* const* buffers);
   void SetShaderResources(ShaderStage stage, UINT start, UINT count, ShaderResourceView* const* views);
   void SetSamplers(ShaderStage stage, UINT start, UINT count, SamplerState* const* samplers);
+  void GetConstantBuffers(ShaderStage stage, UINT start, UINT count, Buffer** buffers);
+  void GetShaderResources(ShaderStage stage, UINT start, UINT count, ShaderResourceView** views);
+  void GetSamplers(ShaderStage stage, UINT start, UINT count, SamplerState** samplers);
   void EmitBarriers();
   // ResolveSubresource as `format` where an image stores another member of its
   // typeless family: a rendering instance with a resolve attachment.
@@ -321,6 +362,11 @@ class ContextImpl final : public DeviceContext {
   bool descriptorsDirty_ = true;
   bool vertexBuffersDirty_ = true;
   std::unique_ptr<QueryTracker> queries_;
+  // SetPredication: the predicate, its value, and whether its result equals
+  // the value, so that predicated calls are skipped.
+  Bound<QueryImpl> predicate_;
+  BOOL predicateValue_ = FALSE;
+  bool predicationSkips_ = false;
 };
 
 }  // namespace rhi::vk

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 
+#include "call_limits.h"
 #include "context.h"
 #include "pipelines.h"
 #include "queries.h"
@@ -130,6 +131,7 @@ void ContextImpl::BeginRendering() {
 
 const GraphicsPipeline* ContextImpl::PrepareDraw(const char* call, TrackedResource* indirect,
                                                  const Access& indirectUse) {
+  if (predicationSkips_) return nullptr;  // SetPredication
   if (!stages_[0].shader) {
     ReportDrawError(std::string(call) + ": no vertex shader is bound; the draw is skipped");
     return nullptr;
@@ -462,6 +464,7 @@ void ContextImpl::DrawIndexedInstancedIndirect(Buffer* pBufferForArgs, UINT Alig
 // Compute
 
 const ComputePipeline* ContextImpl::PrepareDispatch(const char* call) {
+  if (predicationSkips_) return nullptr;  // SetPredication
   const ShaderCode* shader = stages_[static_cast<uint32_t>(ShaderStage::Compute)].shader;
   if (!shader) {
     ReportDrawError(std::string(call) + ": no compute shader is bound; the dispatch is skipped");
@@ -497,6 +500,7 @@ void ContextImpl::BindCompute(const ComputePipeline& pipeline) {
 }
 
 void ContextImpl::Dispatch(UINT ThreadGroupCountX, UINT ThreadGroupCountY, UINT ThreadGroupCountZ) {
+  if (!DispatchAllowed(device_->gpu(), ThreadGroupCountX, ThreadGroupCountY, ThreadGroupCountZ)) return;
   const ComputePipeline* pipeline = PrepareDispatch("Dispatch");
   if (!pipeline) return;
   BindCompute(*pipeline);

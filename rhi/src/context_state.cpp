@@ -2,6 +2,7 @@
 // and mark what the next draw must re-emit.
 #include <algorithm>
 
+#include "call_limits.h"
 #include "context.h"
 #include "pipelines.h"
 #include "queries.h"
@@ -38,12 +39,14 @@ void ContextImpl::IASetInputLayout(InputLayout* pInputLayout) {
   auto* layout = static_cast<InputLayoutImpl*>(pInputLayout);
   if (layout == inputLayout_.Get()) return;
   inputLayout_ = layout;
-  pipelineKey_.inputLayout = layout ? layout->serial() : 0;
+  pipelineKey_.inputLayout = layout ? layout->contentId() : 0;
   PipelineStateChanged();
 }
 
 void ContextImpl::IASetVertexBuffers(UINT StartSlot, UINT NumBuffers, Buffer* const* ppVertexBuffers,
                                      const UINT* pStrides, const UINT* pOffsets) {
+  if (!SlotRangeAllowed(device_->gpu(), "IASetVertexBuffers", StartSlot, NumBuffers, IA_VERTEX_INPUT_RESOURCE_SLOT_COUNT))
+    return;
   for (UINT i = 0; i < NumBuffers && StartSlot + i < vertexBuffers_.size(); ++i) {
     auto* buffer = static_cast<BufferImpl*>(ppVertexBuffers ? ppVertexBuffers[i] : nullptr);
     // A buffer bound as a stream-output target cannot be read: D3D11 binds NULL instead.
@@ -80,7 +83,7 @@ void ContextImpl::SetShader(ShaderStage stage, Bindable* object, const ShaderCod
   descriptorsDirty_ = true;
   if (stage == ShaderStage::Compute) return;
   // The key's shader slots are VS, HS, DS, GS, PS: the graphics stages in ShaderStage order.
-  pipelineKey_.shaders[static_cast<uint32_t>(stage)] = code ? code->serial : 0;
+  pipelineKey_.shaders[static_cast<uint32_t>(stage)] = code ? code->contentId : 0;
   PipelineStateChanged();
 }
 
@@ -99,6 +102,9 @@ RHI_SET_SHADER(CS, Compute, ComputeShader)
 #undef RHI_SET_SHADER
 
 void ContextImpl::SetConstantBuffers(ShaderStage stage, UINT start, UINT count, Buffer* const* buffers) {
+  if (!SlotRangeAllowed(device_->gpu(), std::string(StagePrefix(stage)) + "SetConstantBuffers", start, count,
+                        COMMONSHADER_CONSTANT_BUFFER_API_SLOT_COUNT))
+    return;
   auto& slots = stages_[static_cast<uint32_t>(stage)].constantBuffers;
   for (UINT i = 0; i < count && start + i < slots.size(); ++i)
     slots[start + i] = static_cast<BufferImpl*>(buffers ? buffers[i] : nullptr);
@@ -107,6 +113,9 @@ void ContextImpl::SetConstantBuffers(ShaderStage stage, UINT start, UINT count, 
 
 void ContextImpl::SetShaderResources(ShaderStage stage, UINT start, UINT count,
                                      ShaderResourceView* const* views) {
+  if (!SlotRangeAllowed(device_->gpu(), std::string(StagePrefix(stage)) + "SetShaderResources", start, count,
+                        COMMONSHADER_INPUT_RESOURCE_SLOT_COUNT))
+    return;
   auto& slots = stages_[static_cast<uint32_t>(stage)].shaderResources;
   for (UINT i = 0; i < count && start + i < slots.size(); ++i) {
     auto* view = static_cast<ShaderResourceViewImpl*>(views ? views[i] : nullptr);
@@ -126,6 +135,9 @@ void ContextImpl::SetShaderResources(ShaderStage stage, UINT start, UINT count,
 }
 
 void ContextImpl::SetSamplers(ShaderStage stage, UINT start, UINT count, SamplerState* const* samplers) {
+  if (!SlotRangeAllowed(device_->gpu(), std::string(StagePrefix(stage)) + "SetSamplers", start, count,
+                        COMMONSHADER_SAMPLER_SLOT_COUNT))
+    return;
   auto& slots = stages_[static_cast<uint32_t>(stage)].samplers;
   for (UINT i = 0; i < count && start + i < slots.size(); ++i)
     slots[start + i] = static_cast<SamplerStateImpl*>(samplers ? samplers[i] : nullptr);
@@ -174,6 +186,7 @@ void ContextImpl::SetUavCounter(UnorderedAccessViewImpl& view, UINT count) {
 }
 
 void ContextImpl::SOSetTargets(UINT NumBuffers, Buffer* const* ppSOTargets, const UINT* pOffsets) {
+  if (!CountAllowed(device_->gpu(), "SOSetTargets", "NumBuffers", NumBuffers, SO_BUFFER_SLOT_COUNT)) return;
   // D3D11: unspecified slots up to SO_BUFFER_SLOT_COUNT are unbound.
   for (UINT i = 0; i < SO_BUFFER_SLOT_COUNT; ++i) {
     auto* buffer = i < NumBuffers && ppSOTargets ? static_cast<BufferImpl*>(ppSOTargets[i]) : nullptr;
@@ -199,18 +212,24 @@ void ContextImpl::RSSetState(RasterizerState* pRasterizerState) {
   auto* state = static_cast<RasterizerStateImpl*>(pRasterizerState);
   if (state == rasterizer_.Get()) return;
   rasterizer_ = state;
-  pipelineKey_.rasterizer = state ? state->serial() : 0;
+  pipelineKey_.rasterizer = state ? state->contentId() : 0;
   PipelineStateChanged();
   dynamicDirty_.viewport = true;  // ScissorEnable decides the scissor
 }
 
 void ContextImpl::RSSetViewports(UINT NumViewports, const VIEWPORT* pViewports) {
-  viewports_.assign(pViewports, pViewports + std::min(NumViewports, VIEWPORT_AND_SCISSORRECT_OBJECT_COUNT_PER_PIPELINE));
+  if (!CountAllowed(device_->gpu(), "RSSetViewports", "NumViewports", NumViewports,
+                    VIEWPORT_AND_SCISSORRECT_OBJECT_COUNT_PER_PIPELINE))
+    return;
+  viewports_.assign(pViewports, pViewports + NumViewports);
   dynamicDirty_.viewport = true;
 }
 
 void ContextImpl::RSSetScissorRects(UINT NumRects, const RECT* pRects) {
-  scissors_.assign(pRects, pRects + std::min(NumRects, VIEWPORT_AND_SCISSORRECT_OBJECT_COUNT_PER_PIPELINE));
+  if (!CountAllowed(device_->gpu(), "RSSetScissorRects", "NumRects", NumRects,
+                    VIEWPORT_AND_SCISSORRECT_OBJECT_COUNT_PER_PIPELINE))
+    return;
+  scissors_.assign(pRects, pRects + NumRects);
   dynamicDirty_.viewport = true;
 }
 
@@ -344,7 +363,7 @@ void ContextImpl::OMSetBlendState(BlendState* pBlendState, const FLOAT BlendFact
   if (state != blendState_.Get() || SampleMask != sampleMask_) {
     blendState_ = state;
     sampleMask_ = SampleMask;
-    pipelineKey_.blend = state ? state->serial() : 0;
+    pipelineKey_.blend = state ? state->contentId() : 0;
     pipelineKey_.sampleMask = SampleMask;
     PipelineStateChanged();
   }
@@ -360,7 +379,7 @@ void ContextImpl::OMSetDepthStencilState(DepthStencilState* pDepthStencilState, 
   auto* state = static_cast<DepthStencilStateImpl*>(pDepthStencilState);
   if (state != depthStencilState_.Get()) {
     depthStencilState_ = state;
-    pipelineKey_.depthStencil = state ? state->serial() : 0;
+    pipelineKey_.depthStencil = state ? state->contentId() : 0;
     PipelineStateChanged();
   }
   stencilRef_ = StencilRef;
@@ -457,6 +476,9 @@ void ContextImpl::ClearState() {
   sampleMask_ = DEFAULT_SAMPLE_MASK;
   depthStencilState_.Reset();
   stencilRef_ = 0;
+  predicate_.Reset();
+  predicateValue_ = FALSE;
+  predicationSkips_ = false;
   renderTargetsChanged_ = descriptorsDirty_ = vertexBuffersDirty_ = true;
   dynamicDirty_.All();
 }

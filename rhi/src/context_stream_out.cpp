@@ -89,6 +89,7 @@ void ContextImpl::WriteDrawAutoArgs(BufferImpl& buffer, UINT stride, UINT vertex
 }
 
 void ContextImpl::DrawAuto() {
+  if (predicationSkips_) return;
   BufferImpl* source = vertexBuffers_[0].buffer.Get();
   if (!source || !(source->desc().BindFlags & BIND_STREAM_OUTPUT)) {
     ReportDrawError("DrawAuto: input slot 0 must hold a buffer created with BIND_STREAM_OUTPUT");

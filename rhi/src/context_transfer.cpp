@@ -1,6 +1,8 @@
 // Clears, Map/Unmap, uploads, copies, resolves and Flush.
 #include <algorithm>
 #include <cstring>
+#include <string>
+#include <tuple>
 
 #include "context.h"
 #include "queries.h"
@@ -67,9 +69,31 @@ void ContextImpl::UploadBuffer(BufferImpl& buffer, VkDeviceSize offset, const vo
   device_->hostSlices().Release(staging);
 }
 
+namespace {
+
+// D3D11's rule for block-compressed regions: they start on a 4x4 block and cover whole
+// blocks, except that they may end at the subresource's edge (a 2x2 level is one block).
+std::string BlockAlignmentError(const TextureStorage& texture, UINT subresource, VkOffset3D origin, VkExtent3D extent) {
+  const states::FormatInfo& format = *states::GetFormatInfo(texture.shape().format);
+  const UINT bs = format.blockSize;
+  if (bs == 1) return {};
+  const VkExtent3D level = texture.MipExtent(subresource % texture.shape().mipLevels);
+  const bool aligned = origin.x % bs == 0 && origin.y % bs == 0 &&
+                       (extent.width % bs == 0 || origin.x + extent.width == level.width) &&
+                       (extent.height % bs == 0 || origin.y + extent.height == level.height);
+  if (aligned) return {};
+  return std::string("the region at (") + std::to_string(origin.x) + ", " + std::to_string(origin.y) + ") of " +
+         std::to_string(extent.width) + "x" + std::to_string(extent.height) + " texels of a " + format.name +
+         " subresource (" + std::to_string(level.width) + "x" + std::to_string(level.height) +
+         ") is not aligned to its 4x4 blocks";
+}
+
+}  // namespace
+
 void ContextImpl::UploadTexture(TextureStorage& texture, UINT subresource, const BOX* box, const void* data,
                                 UINT rowPitch, UINT depthPitch) {
-  const UINT bytesPerElement = states::GetFormatInfo(texture.shape().format)->bytesPerElement;
+  // Rows are rows of 4x4 blocks for block-compressed formats (box offsets are block-aligned).
+  const states::FormatInfo& format = *states::GetFormatInfo(texture.shape().format);
   VkExtent3D full = texture.MipExtent(subresource % texture.shape().mipLevels);
   VkOffset3D origin{0, 0, 0};
   VkExtent3D extent = full;
@@ -77,18 +101,19 @@ void ContextImpl::UploadTexture(TextureStorage& texture, UINT subresource, const
     origin = {static_cast<int32_t>(box->left), static_cast<int32_t>(box->top), 0};
     extent = {box->right - box->left, box->bottom - box->top, 1};
   }
-  const VkDeviceSize tightRow = VkDeviceSize(extent.width) * bytesPerElement;
+  const VkDeviceSize tightRow = states::RowPitchBytes(format, extent.width);
+  const UINT rows = states::RowCount(format, extent.height);
   if (texture.isStaging()) {
     uint8_t* dst = texture.stagingData() + texture.SubresourceOffset(subresource);
     const UINT dstRow = texture.RowPitch(subresource);
-    for (UINT y = 0; y < extent.height; ++y)
-      std::memcpy(dst + (origin.y + y) * dstRow + origin.x * bytesPerElement,
+    for (UINT y = 0; y < rows; ++y)
+      std::memcpy(dst + (origin.y / format.blockSize + y) * dstRow + origin.x / format.blockSize * format.bytesPerElement,
                   static_cast<const uint8_t*>(data) + VkDeviceSize(y) * rowPitch, tightRow);
     return;
   }
   (void)depthPitch;
-  HostSlice staging = device_->hostSlices().Allocate(tightRow * extent.height, 16);
-  for (UINT y = 0; y < extent.height; ++y)
+  HostSlice staging = device_->hostSlices().Allocate(tightRow * rows, 16);
+  for (UINT y = 0; y < rows; ++y)
     std::memcpy(staging.data + y * tightRow, static_cast<const uint8_t*>(data) + VkDeviceSize(y) * rowPitch, tightRow);
   EndRendering();
   Use(texture, uses::kTransferWrite);
@@ -104,6 +129,7 @@ void ContextImpl::UploadTexture(TextureStorage& texture, UINT subresource, const
 
 void ContextImpl::UpdateSubresource(Resource* pDstResource, UINT DstSubresource, const BOX* pDstBox,
                                     const void* pSrcData, UINT SrcRowPitch, UINT SrcDepthPitch) {
+  if (predicationSkips_) return;
   if (BufferImpl* buffer = AsBuffer(pDstResource)) {
     if (buffer->desc().Usage != USAGE_DEFAULT) {
       ReportDrawError("UpdateSubresource: only USAGE_DEFAULT resources can be updated");
@@ -120,6 +146,14 @@ void ContextImpl::UpdateSubresource(Resource* pDstResource, UINT DstSubresource,
     ReportDrawError("UpdateSubresource: the destination must be a USAGE_DEFAULT resource and a valid subresource");
     return;
   }
+  if (pDstBox) {
+    const VkOffset3D origin{static_cast<int32_t>(pDstBox->left), static_cast<int32_t>(pDstBox->top), 0};
+    const VkExtent3D extent{pDstBox->right - pDstBox->left, pDstBox->bottom - pDstBox->top, 1};
+    if (std::string reason = BlockAlignmentError(*texture, DstSubresource, origin, extent); !reason.empty()) {
+      ReportDrawError("UpdateSubresource: pDstBox: " + reason);
+      return;
+    }
+  }
   UploadTexture(*texture, DstSubresource, pDstBox, pSrcData, SrcRowPitch, SrcDepthPitch);
 }
 
@@ -127,6 +161,7 @@ void ContextImpl::UpdateSubresource(Resource* pDstResource, UINT DstSubresource,
 // Clears
 
 void ContextImpl::ClearRenderTargetView(RenderTargetView* pRenderTargetView, const FLOAT ColorRGBA[4]) {
+  if (predicationSkips_) return;
   auto* view = static_cast<RenderTargetViewImpl*>(pRenderTargetView);
   TextureStorage& texture = view->texture();
   const auto* format = states::GetFormatInfo(view->format());
@@ -169,6 +204,7 @@ void ContextImpl::ClearRenderTargetView(RenderTargetView* pRenderTargetView, con
 
 void ContextImpl::ClearDepthStencilView(DepthStencilView* pDepthStencilView, UINT ClearFlags, FLOAT Depth,
                                         UINT8 Stencil) {
+  if (predicationSkips_) return;
   auto* view = static_cast<DepthStencilViewImpl*>(pDepthStencilView);
   TextureStorage& texture = view->texture();
   VkImageSubresourceRange range = view->range();
@@ -185,6 +221,7 @@ void ContextImpl::ClearDepthStencilView(DepthStencilView* pDepthStencilView, UIN
 }
 
 void ContextImpl::ClearUnorderedAccessViewUint(UnorderedAccessView* pUnorderedAccessView, const UINT Values[4]) {
+  if (predicationSkips_) return;
   auto* view = static_cast<UnorderedAccessViewImpl*>(pUnorderedAccessView);
   EndRendering();
   if (BufferImpl* buffer = view->buffer()) {
@@ -205,6 +242,7 @@ void ContextImpl::ClearUnorderedAccessViewUint(UnorderedAccessView* pUnorderedAc
 }
 
 void ContextImpl::ClearUnorderedAccessViewFloat(UnorderedAccessView* pUnorderedAccessView, const FLOAT Values[4]) {
+  if (predicationSkips_) return;
   auto* view = static_cast<UnorderedAccessViewImpl*>(pUnorderedAccessView);
   if (view->buffer()) {
     UINT bits[4];
@@ -285,6 +323,7 @@ struct CopyRegion {
 }  // namespace
 
 void ContextImpl::CopyResource(Resource* pDstResource, Resource* pSrcResource) {
+  if (predicationSkips_) return;
   if (BufferImpl* dst = AsBuffer(pDstResource)) {
     BufferImpl* src = AsBuffer(pSrcResource);
     if (!src || src->desc().ByteWidth != dst->desc().ByteWidth) {
@@ -339,6 +378,7 @@ void ContextImpl::CopyStructureCount(Buffer* pDstBuffer, UINT DstAlignedByteOffs
 
 void ContextImpl::CopySubresourceRegion(Resource* pDstResource, UINT DstSubresource, UINT DstX, UINT DstY, UINT,
                                         Resource* pSrcResource, UINT SrcSubresource, const BOX* pSrcBox) {
+  if (predicationSkips_) return;
   EndRendering();
   if (BufferImpl* dst = AsBuffer(pDstResource)) {
     BufferImpl* src = AsBuffer(pSrcResource);
@@ -373,29 +413,38 @@ void ContextImpl::CopySubresourceRegion(Resource* pDstResource, UINT DstSubresou
     region.extent = {pSrcBox->right - pSrcBox->left, pSrcBox->bottom - pSrcBox->top, 1};
   }
   region.dstOffset = {static_cast<int32_t>(DstX), static_cast<int32_t>(DstY), 0};
+  for (auto [texture, sub, offset, what] : {std::tuple{src, SrcSubresource, region.srcOffset, "pSrcBox"},
+                                           std::tuple{dst, DstSubresource, region.dstOffset, "DstX, DstY"}}) {
+    if (std::string reason = BlockAlignmentError(*texture, sub, offset, region.extent); !reason.empty()) {
+      ReportDrawError(std::string("CopySubresourceRegion: ") + what + ": " + reason);
+      return;
+    }
+  }
   Use(*src, uses::kTransferRead);
   Use(*dst, uses::kTransferWrite);
   FlushBarriers();
   VkCommandBuffer commands = Commands();
-  const UINT bpe = states::GetFormatInfo(src->shape().format)->bytesPerElement;
+  // Offsets and rows count 4x4 blocks for block-compressed formats (bs = 4).
+  const states::FormatInfo& format = *states::GetFormatInfo(src->shape().format);
+  const UINT bpe = format.bytesPerElement, bs = format.blockSize;
   auto bufferCopy = [&](const TextureStorage& staging, UINT sub, VkOffset3D imageOffset, VkOffset3D bufferOffset,
                         const TextureStorage& image, UINT imageSub) {
     VkBufferImageCopy copy{};
-    copy.bufferOffset = staging.SubresourceOffset(sub) + VkDeviceSize(bufferOffset.y) * staging.RowPitch(sub) +
-                        VkDeviceSize(bufferOffset.x) * bpe;
-    copy.bufferRowLength = staging.RowPitch(sub) / bpe;
+    copy.bufferOffset = staging.SubresourceOffset(sub) + VkDeviceSize(bufferOffset.y / bs) * staging.RowPitch(sub) +
+                        VkDeviceSize(bufferOffset.x / bs) * bpe;
+    copy.bufferRowLength = staging.RowPitch(sub) / bpe * bs;
     copy.imageSubresource = CopyLayers(image, imageSub);
     copy.imageOffset = imageOffset;
     copy.imageExtent = region.extent;
     return copy;
   };
   if (src->isStaging() && dst->isStaging()) {
-    for (UINT y = 0; y < region.extent.height; ++y) {
-      VkBufferCopy row{src->SubresourceOffset(SrcSubresource) + (region.srcOffset.y + y) * src->RowPitch(SrcSubresource) +
-                           region.srcOffset.x * bpe,
-                       dst->SubresourceOffset(DstSubresource) + (region.dstOffset.y + y) * dst->RowPitch(DstSubresource) +
-                           region.dstOffset.x * bpe,
-                       VkDeviceSize(region.extent.width) * bpe};
+    for (UINT y = 0; y < states::RowCount(format, region.extent.height); ++y) {
+      VkBufferCopy row{src->SubresourceOffset(SrcSubresource) +
+                           (region.srcOffset.y / bs + y) * src->RowPitch(SrcSubresource) + region.srcOffset.x / bs * bpe,
+                       dst->SubresourceOffset(DstSubresource) +
+                           (region.dstOffset.y / bs + y) * dst->RowPitch(DstSubresource) + region.dstOffset.x / bs * bpe,
+                       states::RowPitchBytes(format, region.extent.width)};
       vkCmdCopyBuffer(commands, src->stagingBuffer(), dst->stagingBuffer(), 1, &row);
     }
   } else if (dst->isStaging()) {
@@ -466,6 +515,7 @@ VkImageView AttachmentView(Gpu& gpu, const TextureStorage& texture, UINT subreso
 
 void ContextImpl::ResolveSubresource(Resource* pDstResource, UINT DstSubresource, Resource* pSrcResource,
                                      UINT SrcSubresource, DXGI_FORMAT Format) {
+  if (predicationSkips_) return;
   TextureStorage* dst = AsTexture(pDstResource);
   TextureStorage* src = AsTexture(pSrcResource);
   if (std::string reason = ResolveRefusal(dst, DstSubresource, src, SrcSubresource, Format); !reason.empty()) {

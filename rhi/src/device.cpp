@@ -8,11 +8,7 @@
 #include "resources.h"
 #include "shaders.h"
 #include "state_objects.h"
-#include "states/blend.h"
-#include "states/depth_stencil.h"
 #include "states/formats.h"
-#include "states/rasterizer.h"
-#include "states/sampler.h"
 #include "views.h"
 
 namespace rhi {
@@ -40,6 +36,7 @@ HRESULT DeviceImpl::Create(const DEVICE_OPTIONS& options, DeviceImpl** out) {
   if (HRESULT hr = Gpu::Create(options, &device->gpu_); FAILED(hr)) return hr;
   device->hostSlices_ = std::make_unique<HostSliceAllocator>(*device->gpu_);
   device->pipelines_ = std::make_unique<PipelineCache>(*device->gpu_);
+  device->caches_ = std::make_unique<ObjectCaches>();
   device->context_ = std::make_unique<ContextImpl>(device.Get());
   *out = device.Detach();
   return S_OK;
@@ -150,33 +147,19 @@ HRESULT DeviceImpl::CreateDeduplicated(const Desc* desc, Interface** out) {
   if (std::string reason = states::Validate(*desc); !reason.empty()) return gpu_->Refuse(reason);
   // D3D11 deduplicates by the normalised desc, and GetDesc reports that form.
   const Desc normalized = states::Normalize(*desc);
-  const uint64_t hash = states::KeyHash(normalized);
-  auto [first, last] = stateCache_.equal_range(hash);
-  for (auto it = first; it != last; ++it) {
-    auto* existing = static_cast<Impl*>(it->second);
-    if (states::KeyEqual(existing->desc(), normalized)) {
-      existing->AddRef();
-      *out = existing;
-      return S_OK;
+  auto create = [&](uint64_t contentId, StateObject<Interface, Desc>** created) -> HRESULT {
+    ComPtr<Impl> object;
+    object.Attach(new Impl(this, normalized, contentId));
+    if constexpr (std::is_same_v<Impl, SamplerStateImpl>) {
+      if (HRESULT hr = object->Initialize(); FAILED(hr)) return hr;
     }
-  }
-  ComPtr<Impl> created;
-  created.Attach(new Impl(this, normalized));
-  if constexpr (std::is_same_v<Impl, SamplerStateImpl>) {
-    if (HRESULT hr = created->Initialize(); FAILED(hr)) return hr;
-  }
-  stateCache_.emplace(hash, created.Get());
-  *out = created.Detach();
-  return S_OK;
-}
-
-void DeviceImpl::ForgetState(DeviceChild* object) {
-  for (auto it = stateCache_.begin(); it != stateCache_.end(); ++it) {
-    if (it->second == object) {
-      stateCache_.erase(it);
-      return;
-    }
-  }
+    *created = object.Detach();
+    return S_OK;
+  };
+  StateObject<Interface, Desc>* object = nullptr;
+  HRESULT hr = caches_->Of(&normalized).FindOrCreate(*this, normalized, create, &object);
+  if (SUCCEEDED(hr)) *out = static_cast<Impl*>(object);
+  return hr;
 }
 
 HRESULT DeviceImpl::CreateBlendState(const BLEND_DESC* pBlendStateDesc, BlendState** ppBlendState) {

@@ -1,19 +1,22 @@
 // The D3D11 device over Vulkan, and the base of every device child.
 #pragma once
 
+#include <atomic>
 #include <memory>
+#include <mutex>
 #include <string>
-#include <unordered_map>
 #include <utility>
 
 #include "gpu.h"
 #include "host_slices.h"
+#include "private_data.h"
 #include "rhi/rhi.h"
 
 namespace rhi::vk {
 
 class ContextImpl;
 class PipelineCache;
+struct ObjectCaches;
 
 class DeviceImpl final : public Device {
  public:
@@ -60,18 +63,41 @@ class DeviceImpl final : public Device {
                                 RasterizerState** ppRasterizerState) override;
   HRESULT CreateSamplerState(const SAMPLER_DESC* pSamplerDesc, SamplerState** ppSamplerState) override;
   HRESULT CreateQuery(const QUERY_DESC* pQueryDesc, Query** ppQuery) override;
+  HRESULT CreatePredicate(const QUERY_DESC* pPredicateDesc, Predicate** ppPredicate) override;  // predication.cpp
   HRESULT CheckMultisampleQualityLevels(DXGI_FORMAT Format, UINT SampleCount, UINT* pNumQualityLevels) override;
   void GetImmediateContext(DeviceContext** ppImmediateContext) override;
+  HRESULT CreateDeferredContext(UINT ContextFlags, DeviceContext** ppDeferredContext) override;  // deferred_context.cpp
+  // device_queries.cpp
+  D3D_FEATURE_LEVEL GetFeatureLevel() override { return D3D_FEATURE_LEVEL_11_0; }
+  UINT GetCreationFlags() override;
+  HRESULT GetDeviceRemovedReason() override;
+  HRESULT SetExceptionMode(UINT RaiseFlags) override;
+  UINT GetExceptionMode() override { return exceptionMode_; }
+  HRESULT CheckFormatSupport(DXGI_FORMAT Format, UINT* pFormatSupport) override;
+  HRESULT CheckFeatureSupport(FEATURE Feature, void* pFeatureSupportData, UINT FeatureSupportDataSize) override;
+  HRESULT CreateClassLinkage(ClassLinkage** ppLinkage) override;
+  void CheckCounterInfo(COUNTER_INFO* pCounterInfo) override;
+  HRESULT CreateCounter(const COUNTER_DESC* pCounterDesc, Counter** ppCounter) override;
+  HRESULT CheckCounter(const COUNTER_DESC* pDesc, COUNTER_TYPE* pType, UINT* pActiveCounters, LPSTR szName,
+                       UINT* pNameLength, LPSTR szUnits, UINT* pUnitsLength, LPSTR szDescription,
+                       UINT* pDescriptionLength) override;
+  HRESULT OpenSharedResource(HANDLE hResource, REFIID ReturnedInterface, void** ppResource) override;
+  // private_data.cpp
+  HRESULT GetPrivateData(REFGUID guid, UINT* pDataSize, void* pData) override;
+  HRESULT SetPrivateData(REFGUID guid, UINT DataSize, const void* pData) override;
+  HRESULT SetPrivateDataInterface(REFGUID guid, const Unknown* pData) override;
   const char* GetAdapterName() override { return gpu_->AdapterName().c_str(); }
 
   Gpu& gpu() { return *gpu_; }
   HostSliceAllocator& hostSlices() { return *hostSlices_; }
   ContextImpl& context() { return *context_; }
   PipelineCache& pipelines() { return *pipelines_; }
-  uint64_t NextSerial() { return ++objectSerial_; }
-
-  // Deduplicated state objects forget themselves when their last reference goes.
-  void ForgetState(DeviceChild* object);
+  ObjectCaches& caches() { return *caches_; }
+  // Ids of object contents (pipeline keys): unique for the device's lifetime.
+  uint64_t NextContentId() { return ++lastContentId_; }
+  // Held by creation calls that record into the immediate context (initial
+  // data, image layouts), so that creation from many threads is safe.
+  std::mutex& creationRecordingMutex() { return creationRecordingMutex_; }
 
  private:
   DeviceImpl() = default;
@@ -82,10 +108,11 @@ class DeviceImpl final : public Device {
   std::unique_ptr<HostSliceAllocator> hostSlices_;
   std::unique_ptr<PipelineCache> pipelines_;
   std::unique_ptr<ContextImpl> context_;
-  uint64_t objectSerial_ = 0;
-  // D3D11 returns the existing object for a desc equal to an earlier one once
-  // normalised. Keyed by states::KeyHash; values are weak.
-  std::unordered_multimap<uint64_t, DeviceChild*> stateCache_;
+  UINT exceptionMode_ = 0;  // SetExceptionMode
+  PrivateDataStore privateData_;
+  std::unique_ptr<ObjectCaches> caches_;
+  std::atomic<uint64_t> lastContentId_{0};
+  std::mutex creationRecordingMutex_;
 };
 
 // What the context's bindings hold on an object: it stays alive while bound,
@@ -94,9 +121,9 @@ class DeviceImpl final : public Device {
 // binding call.
 class Bindable {
  public:
-  void Bind() { ++bindings_; }
+  void Bind() { counts_.fetch_add(kOneBinding, std::memory_order_relaxed); }
   void Unbind() {
-    if (--bindings_ == 0 && references_ == 0) Destroy();
+    if (counts_.fetch_sub(kOneBinding, std::memory_order_acq_rel) == kOneBinding) Destroy();
   }
 
  protected:
@@ -104,8 +131,12 @@ class Bindable {
   // Deletes the object once neither the application nor a binding holds it.
   virtual void Destroy() = 0;
 
-  UINT references_ = 1;  // the application's references
-  UINT bindings_ = 0;    // the context's bindings
+  static constexpr uint64_t kOneBinding = uint64_t(1) << 32;
+  static UINT References(uint64_t counts) { return static_cast<UINT>(counts); }
+  // The application's references (low 32 bits) and the context's bindings
+  // (high 32 bits) in one atomic, as the device is free-threaded: exactly one
+  // thread sees the pair reach zero, and that one deletes the object.
+  std::atomic<uint64_t> counts_{1};
 };
 
 // D3D11's lifetime rules for device children: an object lives while the
@@ -116,21 +147,32 @@ class Bindable {
 template <class Interface>
 class DeviceChildImpl : public Interface, public Bindable {
  public:
-  explicit DeviceChildImpl(DeviceImpl* device) : device_(device), serial_(device->NextSerial()) {
+  explicit DeviceChildImpl(DeviceImpl* device) : device_(device) {
     device_->AddRef();  // for the creator's reference
   }
   UINT AddRef() override {
-    if (references_++ == 0) device_->AddRef();
-    return references_;
+    const uint64_t before = counts_.fetch_add(1, std::memory_order_relaxed);
+    if (References(before) == 0) device_->AddRef();
+    return References(before) + 1;
   }
   UINT Release() override {
-    const UINT left = --references_;
-    if (left == 0) {
-      DeviceImpl* device = device_;
-      if (bindings_ == 0) delete this;
+    DeviceImpl* device = device_;  // read first: another thread may delete the object once the count drops
+    const uint64_t before = counts_.fetch_sub(1, std::memory_order_acq_rel);
+    if (References(before) == 1) {
+      if (before == 1) delete this;
       device->Release();
     }
-    return left;
+    return References(before) - 1;
+  }
+  // AddRef, unless the object is already being deleted (no reference and no
+  // binding left): for caches that hold objects weakly.
+  bool TryAddRef() {
+    uint64_t counts = counts_.load(std::memory_order_relaxed);
+    do {
+      if (counts == 0) return false;
+    } while (!counts_.compare_exchange_weak(counts, counts + 1, std::memory_order_acquire, std::memory_order_relaxed));
+    if (References(counts) == 0) device_->AddRef();
+    return true;
   }
   void GetDevice(Device** ppDevice) override {
     device_->AddRef();
@@ -138,15 +180,12 @@ class DeviceChildImpl : public Interface, public Bindable {
   }
   DeviceImpl& device() const { return *device_; }
   Gpu& gpu() const { return device_->gpu(); }
-  // Unique for the device's lifetime: pipeline keys use it instead of pointers.
-  uint64_t serial() const { return serial_; }
 
  protected:
   void Destroy() override { delete this; }
 
  private:
   DeviceImpl* device_;
-  uint64_t serial_;
 };
 
 // A context binding (see Bindable).

@@ -384,10 +384,13 @@ VkSampleCountFlags Gpu::ImageSampleCounts(const VkImageCreateInfo& info) const {
 
 std::unique_ptr<Gpu::Submission> Gpu::AcquireSubmission() {
   RetireCompleted();
-  if (!idle_.empty()) {
-    auto s = std::move(idle_.back());
-    idle_.pop_back();
-    return s;
+  {
+    std::lock_guard lock(submissionMutex_);
+    if (!idle_.empty()) {
+      auto s = std::move(idle_.back());
+      idle_.pop_back();
+      return s;
+    }
   }
   auto s = std::make_unique<Submission>();
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
@@ -405,11 +408,13 @@ std::unique_ptr<Gpu::Submission> Gpu::AcquireSubmission() {
 }
 
 VkCommandBuffer Gpu::BeginCommands() {
-  recording_ = AcquireSubmission();
-  recording_->serial = recordingSerial_;
+  std::unique_ptr<Submission> submission = AcquireSubmission();
+  submission->serial = recordingSerial_;
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  vkBeginCommandBuffer(recording_->commands, &begin);
+  vkBeginCommandBuffer(submission->commands, &begin);
+  std::lock_guard lock(submissionMutex_);
+  recording_ = std::move(submission);
   return recording_->commands;
 }
 
@@ -425,15 +430,23 @@ void Gpu::Submit() {
   if (result != VK_SUCCESS)
     Report(MESSAGE_CATEGORY_EXECUTION, MESSAGE_SEVERITY_CORRUPTION,
            std::string("vkQueueSubmit2 failed: ") + ResultName(result));
+  NoteResult(result, "vkQueueSubmit2");
+  std::lock_guard lock(submissionMutex_);
   inFlight_.push_back(std::move(recording_));
   ++recordingSerial_;
 }
 
 void Gpu::RetireCompleted() {
-  while (!inFlight_.empty() && vkGetFenceStatus(device_, inFlight_.front()->fence) == VK_SUCCESS) {
-    auto done = std::move(inFlight_.front());
-    inFlight_.pop_front();
-    completedSerial_ = done->serial;
+  for (;;) {
+    std::unique_ptr<Submission> done;
+    {
+      std::lock_guard lock(submissionMutex_);
+      if (inFlight_.empty() || vkGetFenceStatus(device_, inFlight_.front()->fence) != VK_SUCCESS) return;
+      done = std::move(inFlight_.front());
+      inFlight_.pop_front();
+      completedSerial_ = done->serial;
+    }
+    // Outside the lock: a destruction may defer another.
     for (auto& destroy : done->destroyWhenDone) destroy();
     done->destroyWhenDone.clear();
     // Recycled as soon as the GPU is done with it, not when it is next needed:
@@ -442,6 +455,7 @@ void Gpu::RetireCompleted() {
     // reuses it from there.
     vkResetCommandPool(device_, done->pool, 0);
     vkResetFences(device_, 1, &done->fence);
+    std::lock_guard lock(submissionMutex_);
     idle_.push_back(std::move(done));
   }
 }
@@ -454,10 +468,19 @@ bool Gpu::IsComplete(uint64_t serial) {
 
 void Gpu::WaitFor(uint64_t serial) {
   if (serial >= recordingSerial_ && recording_) Submit();
-  while (!IsComplete(serial) && !inFlight_.empty()) {
-    vkWaitForFences(device_, 1, &inFlight_.front()->fence, VK_TRUE, UINT64_MAX);
+  // A lost device never signals its fences: the wait ends instead of hanging,
+  // and GetDeviceRemovedReason says why.
+  while (!deviceLost_ && !IsComplete(serial) && !inFlight_.empty()) {
+    NoteResult(vkWaitForFences(device_, 1, &inFlight_.front()->fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
     RetireCompleted();
   }
+}
+
+void Gpu::NoteResult(VkResult result, const char* call) {
+  if (result != VK_ERROR_DEVICE_LOST || deviceLost_.exchange(true)) return;
+  Report(MESSAGE_CATEGORY_EXECUTION, MESSAGE_SEVERITY_CORRUPTION,
+         std::string(call) + " returned VK_ERROR_DEVICE_LOST: the device is removed "
+                             "(GetDeviceRemovedReason returns DXGI_ERROR_DEVICE_REMOVED)");
 }
 
 void Gpu::WaitIdle() {
@@ -466,13 +489,12 @@ void Gpu::WaitIdle() {
 }
 
 void Gpu::DeferDestroy(std::function<void()> destroy) {
-  if (recording_) {
-    recording_->destroyWhenDone.push_back(std::move(destroy));
-  } else if (!inFlight_.empty()) {
-    inFlight_.back()->destroyWhenDone.push_back(std::move(destroy));
-  } else {
-    destroy();
+  {
+    std::lock_guard lock(submissionMutex_);
+    if (recording_) return recording_->destroyWhenDone.push_back(std::move(destroy));
+    if (!inFlight_.empty()) return inFlight_.back()->destroyWhenDone.push_back(std::move(destroy));
   }
+  destroy();
 }
 
 }  // namespace rhi::vk

@@ -7,7 +7,9 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <atomic>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -54,6 +56,12 @@ class Gpu {
   const GpuCapabilities& Caps() const { return caps_; }
   const std::string& AdapterName() const { return adapterName_; }
   bool NativeDrawAuto() const { return nativeDrawAuto_; }
+  // The validation layer (the D3D11 debug layer's counterpart) is on.
+  bool Validating() const { return messenger_ != VK_NULL_HANDLE; }
+  // Vulkan reported VK_ERROR_DEVICE_LOST: nothing more completes, and waits return at once.
+  bool DeviceLost() const { return deviceLost_; }
+  // Names a Vulkan object for debuggers and validation messages (VK_EXT_debug_utils; private_data.cpp).
+  void SetObjectName(VkObjectType type, uint64_t handle, const std::string& name) const;
 
   // Reports a refusal or a validation message to the application.
   void Report(MESSAGE_CATEGORY category, MESSAGE_SEVERITY severity, const std::string& text) const;
@@ -129,11 +137,19 @@ class Gpu {
   // DEVICE_OPTIONS::InstanceExtensions (window-system integration for swap chains).
   std::vector<const char*> instanceExtensions_;
 
+  // The context's thread records and submits; objects released on any thread
+  // defer their destruction (the device is free-threaded). The mutex guards
+  // what both touch: changes of the submissions and their destroyWhenDone lists.
+  std::mutex submissionMutex_;
   std::unique_ptr<Submission> recording_;
   std::deque<std::unique_ptr<Submission>> inFlight_;
   std::vector<std::unique_ptr<Submission>> idle_;
   uint64_t recordingSerial_ = 1;
-  uint64_t completedSerial_ = 0;
+  std::atomic<uint64_t> completedSerial_ = 0;
+  // Read from any thread (GetDeviceRemovedReason; the device is free-threaded).
+  std::atomic<bool> deviceLost_ = false;
+  // Records a VK_ERROR_DEVICE_LOST (reported once).
+  void NoteResult(VkResult result, const char* call);
 };
 
 }  // namespace rhi::vk

@@ -48,6 +48,7 @@ uint32_t HostSliceAllocator::CreateChunk(VkDeviceSize minSize) {
 
 HostSlice HostSliceAllocator::Allocate(VkDeviceSize size, VkDeviceSize alignment) {
   size = std::max<VkDeviceSize>(size, 4);
+  std::lock_guard lock(mutex_);
   if (current_ != UINT32_MAX) {
     Chunk& chunk = chunks_[current_];
     if (AlignUp(chunk.used, alignment) + size > chunk.size) {
@@ -77,6 +78,7 @@ void HostSliceAllocator::Release(const HostSlice& slice) {
   if (!slice) return;
   uint32_t index = slice.chunk;
   gpu_.DeferDestroy([this, index] {
+    std::lock_guard lock(mutex_);
     Chunk& chunk = chunks_[index];
     if (--chunk.liveSlices == 0 && index != current_) Recycle(index);
   });

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 namespace rhi::vk {
@@ -43,6 +44,7 @@ class HostSliceAllocator {
   void Recycle(uint32_t chunk);
 
   Gpu& gpu_;
+  std::mutex mutex_;  // dynamic buffers are created and released on any thread
   std::vector<Chunk> chunks_;
   std::vector<uint32_t> freeChunks_;
   uint32_t current_ = UINT32_MAX;

@@ -229,7 +229,7 @@ bool UsesDualSource(const BLEND_DESC& blend) {
 }  // namespace
 
 const ComputePipeline* PipelineCache::Compute(const ShaderCode& shader, std::string* error) {
-  auto& slot = compute_[shader.serial];
+  auto& slot = compute_[shader.contentId];
   if (slot) return slot.get();
   auto pipeline = std::make_unique<ComputePipeline>();
   pipeline->layout = Layout(CollectBindings({&shader}));
@@ -244,7 +244,7 @@ const ComputePipeline* PipelineCache::Compute(const ShaderCode& shader, std::str
   vkDestroyShaderModule(gpu_.Device(), module, nullptr);
   if (result != VK_SUCCESS) {
     *error = std::string("vkCreateComputePipelines failed: ") + ResultName(result);
-    compute_.erase(shader.serial);
+    compute_.erase(shader.contentId);
     return nullptr;
   }
   slot = std::move(pipeline);

@@ -1,7 +1,9 @@
 // Graphics and compute pipelines, built lazily from the bound D3D11 state and
-// cached by a key of that state. State objects and shaders enter the key by
-// serial (deduplication makes equal descs the same object); everything that
-// Vulkan can take as dynamic state stays out of it.
+// cached by a key of that state. State objects, shaders and input layouts enter
+// the key by content id (object_caches.h): an object created again after its
+// release finds the pipelines built for the first, so the cache grows with the
+// distinct contents, not with the objects. Everything that Vulkan can take as
+// dynamic state stays out of it.
 #pragma once
 
 #include <array>
@@ -20,9 +22,9 @@ class InputLayoutImpl;
 struct StreamOutput;
 
 struct GraphicsPipelineKey {
-  std::array<uint64_t, 5> shaders{};  // VS, HS, DS, GS, PS serials (0: none)
+  std::array<uint64_t, 5> shaders{};  // VS, HS, DS, GS, PS content ids (0: none)
   uint64_t inputLayout = 0;
-  uint64_t blend = 0, depthStencil = 0, rasterizer = 0;  // serials, 0: D3D11 default
+  uint64_t blend = 0, depthStencil = 0, rasterizer = 0;  // content ids, 0: D3D11 default
   std::array<uint32_t, SIMULTANEOUS_RENDER_TARGET_COUNT> colorFormats{};  // DXGI formats
   uint32_t depthFormat = 0;  // the VkFormat of the bound depth-stencil view's image (0: none)
   uint16_t samples = 1;

@@ -39,7 +39,9 @@ struct QuerySegment {
   ~QuerySegment();
 };
 
-class QueryImpl final : public DeviceChildImpl<Query> {
+// Every query implements Predicate (ID3D11Predicate adds nothing to ID3D11Query);
+// CreatePredicate accepts only the predicate kinds.
+class QueryImpl final : public DeviceChildImpl<Predicate> {
  public:
   static HRESULT Create(DeviceImpl* device, const QUERY_DESC& desc, QueryImpl** out);
   ~QueryImpl() override;

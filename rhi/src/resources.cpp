@@ -15,6 +15,14 @@ namespace rhi::vk {
 
 namespace {
 
+// Creation records its uploads and layout changes into the immediate context:
+// one creating thread at a time (the device is free-threaded).
+template <class Record>
+void UploadInitialData(DeviceImpl& device, Record&& record) {
+  std::lock_guard lock(device.creationRecordingMutex());
+  record(device.context());
+}
+
 std::string Hex(UINT value) {
   char text[16];
   std::snprintf(text, sizeof text, "0x%X", value);
@@ -140,7 +148,9 @@ HRESULT BufferImpl::Initialize(const SUBRESOURCE_DATA* initialData) {
     if (isStaging())
       std::memcpy(mapped_, initialData->pSysMem, desc_.ByteWidth);
     else
-      device().context().UploadBuffer(*this, 0, initialData->pSysMem, desc_.ByteWidth);
+      UploadInitialData(device(), [&](ContextImpl& context) {
+        context.UploadBuffer(*this, 0, initialData->pSysMem, desc_.ByteWidth);
+      });
   }
   return S_OK;
 }
@@ -221,6 +231,12 @@ std::string ValidateTextureShape(const TextureShape& s, const SUBRESOURCE_DATA* 
     return where + "textures cannot be bound as vertex, index, constant or stream-output buffers";
   if ((s.bindFlags & BIND_DEPTH_STENCIL) && !format->isDepth && format->kind != states::ComponentKind::Typeless)
     return where + "BIND_DEPTH_STENCIL needs a depth or typeless format";
+  // D3D11: block-compressed textures are shader resources only (and staging copies).
+  if (format->blockSize > 1 && (s.bindFlags & ~BIND_SHADER_RESOURCE))
+    return where + std::string(format->name) + " textures can only have BIND_SHADER_RESOURCE (BindFlags " +
+           Hex(s.bindFlags) + ")";
+  if (format->blockSize > 1 && s.samples > 1)
+    return where + std::string(format->name) + " textures cannot be multisampled";
   if ((s.bindFlags & BIND_RENDER_TARGET) && format->isDepth)
     return where + "BIND_RENDER_TARGET cannot use a depth format";
   // D3D11: a depth format cannot be read by shaders; a depth buffer that is
@@ -234,7 +250,7 @@ std::string ValidateTextureShape(const TextureShape& s, const SUBRESOURCE_DATA* 
   if (s.usage == USAGE_STAGING && s.bindFlags) return where + "USAGE_STAGING cannot have bind flags";
   if (s.usage == USAGE_DYNAMIC)
     return where + "USAGE_DYNAMIC textures are not supported by this backend (use DEFAULT + UpdateSubresource)";
-  return {};
+  return CheckMiscFlags(s, where);
 }
 
 VkImageUsageFlags ImageUsage(const TextureShape& s, bool depth) {
@@ -276,17 +292,25 @@ HRESULT TextureStorage::Initialize(DeviceImpl& device, const TextureShape& shape
     if (std::string reason = PickDepthImageFormat(device.gpu()); !reason.empty())
       return device.gpu().Refuse(std::string(call) + ": " + reason);
   }
+  if (std::string reason = CheckMipGenerationFormat(device.gpu(), shape_, vkFormat_, call); !reason.empty())
+    return device.gpu().Refuse(reason);
   aspects_ = depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
   if (depth && (vkFormat_ == VK_FORMAT_D24_UNORM_S8_UINT || vkFormat_ == VK_FORMAT_D32_SFLOAT_S8_UINT ||
                 vkFormat_ == VK_FORMAT_D16_UNORM_S8_UINT))
     aspects_ |= VK_IMAGE_ASPECT_STENCIL_BIT;
+  if (format->blockSize > 1 && !isStaging() &&
+      !device.gpu().IsFormatSupported(vkFormat_, VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_BIT))
+    return device.gpu().Refuse(std::string(call) + ": " + device.gpu().AdapterName() + " cannot sample " +
+                               format->name + " (the device lacks textureCompressionBC)");
   device_ = &device;
   HRESULT hr = isStaging() ? CreateStagingBuffer(device) : CreateImage(device);
   if (FAILED(hr) || !initialData || !initialData->pSysMem) return hr;
-  for (UINT sub = 0; sub < subresourceCount(); ++sub) {
-    const SUBRESOURCE_DATA& data = initialData[sub];
-    device.context().UploadTexture(*this, sub, nullptr, data.pSysMem, data.SysMemPitch, data.SysMemSlicePitch);
-  }
+  UploadInitialData(device, [&](ContextImpl& context) {
+    for (UINT sub = 0; sub < subresourceCount(); ++sub) {
+      const SUBRESOURCE_DATA& data = initialData[sub];
+      context.UploadTexture(*this, sub, nullptr, data.pSysMem, data.SysMemPitch, data.SysMemSlicePitch);
+    }
+  });
   return S_OK;
 }
 
@@ -334,7 +358,7 @@ HRESULT TextureStorage::CreateImage(DeviceImpl& device) {
   result = gpu.AllocateFor(requirements, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, &memory_);
   if (result == VK_SUCCESS) result = vkBindImageMemory(gpu.Device(), image_, memory_, 0);
   if (result != VK_SUCCESS) return ToHresult(result);
-  device.context().InitializeImageLayout(*this);
+  UploadInitialData(device, [&](ContextImpl& context) { context.InitializeImageLayout(*this); });
   return S_OK;
 }
 
@@ -429,11 +453,12 @@ VkImageSubresourceLayers TextureStorage::Layers(UINT subresource) const {
 }
 
 UINT TextureStorage::RowPitch(UINT subresource) const {
-  return MipExtent(subresource % shape_.mipLevels).width * states::GetFormatInfo(shape_.format)->bytesPerElement;
+  return states::RowPitchBytes(*states::GetFormatInfo(shape_.format), MipExtent(subresource % shape_.mipLevels).width);
 }
 
 UINT TextureStorage::DepthPitch(UINT subresource) const {
-  return RowPitch(subresource) * MipExtent(subresource % shape_.mipLevels).height;
+  return RowPitch(subresource) *
+         states::RowCount(*states::GetFormatInfo(shape_.format), MipExtent(subresource % shape_.mipLevels).height);
 }
 
 }  // namespace rhi::vk

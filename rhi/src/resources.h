@@ -128,6 +128,12 @@ class TextureImpl final : public DeviceChildImpl<Interface>, public TextureStora
 using Texture1DImpl = TextureImpl<Texture1D, TEXTURE1D_DESC>;
 using Texture2DImpl = TextureImpl<Texture2D, TEXTURE2D_DESC>;
 
+// D3D11's rules for RESOURCE_MISC_TEXTURECUBE and RESOURCE_MISC_GENERATE_MIPS
+// (texture_misc.cpp): empty, or the reason prefixed with `where`.
+std::string CheckMiscFlags(const TextureShape& shape, const std::string& where);
+// GenerateMips filters with linear blits: empty when `format` allows them.
+std::string CheckMipGenerationFormat(const Gpu& gpu, const TextureShape& shape, VkFormat format, const char* call);
+
 // The storage behind any texture resource, or null for buffers.
 TextureStorage* AsTexture(Resource* resource);
 BufferImpl* AsBuffer(Resource* resource);

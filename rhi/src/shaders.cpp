@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cstring>
 
+#include "object_caches.h"
 #include "spirv/patches.h"
 #include "spirv/stream_output.h"
 #include "states/input_layout.h"
@@ -56,12 +57,33 @@ bool RunsPerSample(const spirv::Reflection& reflection) {
   });
 }
 
+template <class T>
+void AppendBytes(std::string& out, const T& value) {
+  out.append(reinterpret_cast<const char*>(&value), sizeof value);
+}
+
+// Everything a pipeline takes from the shader: the (patched) code and the stream-output declaration.
+void AssignContentId(DeviceImpl& device, ShaderCode& code) {
+  std::string content(reinterpret_cast<const char*>(code.words.data()), code.words.size() * sizeof(uint32_t));
+  if (const StreamOutput* so = code.streamOutput.get()) {
+    AppendBytes(content, so->rasterizedStream);
+    AppendBytes(content, so->strides);
+    for (const SO_DECLARATION_ENTRY& e : so->entries) {
+      content += e.SemanticName ? e.SemanticName : "";
+      for (UINT field : {e.Stream, e.SemanticIndex, UINT(e.StartComponent), UINT(e.ComponentCount), UINT(e.OutputSlot)})
+        AppendBytes(content, field);
+    }
+  }
+  code.contentId = device.caches().shaders.IdOf(device, std::move(content));
+}
+
 template <class Interface>
 HRESULT CreateShaderObject(DeviceImpl& device, const void* bytecode, SIZE_T length, ClassLinkage* linkage,
                            ShaderStage stage, const char* call, Interface** out) {
   if (linkage) return device.gpu().Refuse(std::string(call) + ": class linkage is not supported");
   std::shared_ptr<ShaderCode> code;
   if (HRESULT hr = LoadShaderCode(device, bytecode, length, stage, call, &code); FAILED(hr)) return hr;
+  AssignContentId(device, *code);
   *out = new ShaderObject<Interface>(&device, std::move(code));
   return S_OK;
 }
@@ -106,7 +128,6 @@ HRESULT LoadShaderCode(DeviceImpl& device, const void* bytecode, SIZE_T length, 
                       "which needs Vulkan's sampleRateShading feature; " + gpu.AdapterName() + " lacks it");
   // D3D11's SV_InstanceID counts from 0 in every draw; Vulkan's InstanceIndex includes firstInstance.
   if (expected == ShaderStage::Vertex) code->words = spirv::RebaseInstanceIndex(code->words).value;
-  code->serial = device.NextSerial();
   *out = std::move(code);
   return S_OK;
 }
@@ -199,6 +220,7 @@ HRESULT DeviceImpl::CreateGeometryShaderWithStreamOutput(const void* pShaderByte
   if (!patched) return gpu_->Refuse(std::string(kCall) + ": " + patched.error);
   code->words = std::move(*patched);
   code->streamOutput = std::move(so);
+  AssignContentId(*this, *code);
   *ppGeometryShader = new ShaderObject<GeometryShader>(this, std::move(code));
   return S_OK;
 }
@@ -219,6 +241,14 @@ InputLayoutImpl::InputLayoutImpl(DeviceImpl* device, const INPUT_ELEMENT_DESC* e
     element.AlignedByteOffset = offsets[i];
     elements_.push_back(element);
   }
+  std::string content;
+  for (const INPUT_ELEMENT_DESC& e : elements_) {
+    content.append(e.SemanticName, std::strlen(e.SemanticName) + 1);
+    for (UINT field : {e.SemanticIndex, UINT(e.Format), e.InputSlot, e.AlignedByteOffset, UINT(e.InputSlotClass),
+                       e.InstanceDataStepRate})
+      AppendBytes(content, field);
+  }
+  contentId_ = device->caches().inputLayouts.IdOf(*device, std::move(content));
 }
 
 HRESULT DeviceImpl::CreateInputLayout(const INPUT_ELEMENT_DESC* pInputElementDescs, UINT NumElements,

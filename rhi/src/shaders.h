@@ -29,7 +29,7 @@ class ShaderCode {
   ShaderStage stage = ShaderStage::Vertex;
   std::vector<uint32_t> words;
   spirv::Reflection reflection;
-  uint64_t serial = 0;
+  uint64_t contentId = 0;  // equal for equal code and stream-output declaration (pipeline keys)
   // Set on objects from CreateGeometryShaderWithStreamOutput; `words` carry the
   // transform feedback decorations. Vertex-stage code here means VS-only stream output.
   std::shared_ptr<const StreamOutput> streamOutput;
@@ -55,8 +55,10 @@ class InputLayoutImpl final : public DeviceChildImpl<InputLayout> {
   InputLayoutImpl(DeviceImpl* device, const INPUT_ELEMENT_DESC* elements, UINT count);
   // The elements with owned semantic names and resolved offsets (never APPEND_ALIGNED_ELEMENT).
   const std::vector<INPUT_ELEMENT_DESC>& elements() const { return elements_; }
+  uint64_t contentId() const { return contentId_; }  // equal for equal elements (pipeline keys)
 
  private:
+  uint64_t contentId_ = 0;
   std::vector<std::string> names_;
   std::vector<INPUT_ELEMENT_DESC> elements_;
 };

@@ -21,7 +21,8 @@ const RASTERIZER_DESC& RasterizerDescOf(DeviceChild* state) {
   return state ? static_cast<RasterizerStateImpl*>(state)->desc() : kDefault;
 }
 
-SamplerStateImpl::SamplerStateImpl(DeviceImpl* device, const SAMPLER_DESC& desc) : StateObject(device, desc) {}
+SamplerStateImpl::SamplerStateImpl(DeviceImpl* device, const SAMPLER_DESC& desc, uint64_t contentId)
+    : StateObject(device, desc, contentId) {}
 
 HRESULT SamplerStateImpl::Initialize() {
   states::SamplerLimits limits{gpu().Caps().limits.maxSamplerAnisotropy, gpu().Caps().limits.maxSamplerLodBias};

@@ -3,19 +3,24 @@
 #pragma once
 
 #include "device.h"
+#include "object_caches.h"
 
 namespace rhi::vk {
 
 template <class Interface, class Desc>
 class StateObject : public DeviceChildImpl<Interface> {
  public:
-  StateObject(DeviceImpl* device, const Desc& desc) : DeviceChildImpl<Interface>(device), desc_(desc) {}
-  ~StateObject() override { this->device().ForgetState(this); }
+  // `desc` is normalised; `contentId` stands for it in pipeline keys.
+  StateObject(DeviceImpl* device, const Desc& desc, uint64_t contentId)
+      : DeviceChildImpl<Interface>(device), desc_(desc), contentId_(contentId) {}
+  ~StateObject() override { this->device().caches().Of(&desc_).Forget(desc_, this); }
   void GetDesc(Desc* desc) override { *desc = desc_; }
   const Desc& desc() const { return desc_; }
+  uint64_t contentId() const { return contentId_; }
 
  private:
   Desc desc_;
+  uint64_t contentId_;
 };
 
 using BlendStateImpl = StateObject<BlendState, BLEND_DESC>;
@@ -24,7 +29,7 @@ using RasterizerStateImpl = StateObject<RasterizerState, RASTERIZER_DESC>;
 
 class SamplerStateImpl final : public StateObject<SamplerState, SAMPLER_DESC> {
  public:
-  SamplerStateImpl(DeviceImpl* device, const SAMPLER_DESC& desc);
+  SamplerStateImpl(DeviceImpl* device, const SAMPLER_DESC& desc, uint64_t contentId);
   ~SamplerStateImpl() override;
   VkSampler handle() const { return sampler_; }
   HRESULT Initialize();

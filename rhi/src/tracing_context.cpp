@@ -270,6 +270,65 @@ class TracingContext final : public DeviceContext {
     inner_->SetMarker(name);
   }
 
+  void GenerateMips(ShaderResourceView* v) override {
+    Record("GenerateMips", Obj(v));
+    inner_->GenerateMips(v);
+  }
+
+  void SetPredication(Predicate* p, BOOL value) override {
+    Record("SetPredication", Format("%s, %d", Obj(p).c_str(), value));
+    inner_->SetPredication(p, value);
+  }
+  void GetPredication(Predicate** p, BOOL* value) override { inner_->GetPredication(p, value); }
+
+  void ExecuteCommandList(CommandList* list, BOOL restore) override {
+    Record("ExecuteCommandList", Format("%s, %d", Obj(list).c_str(), restore));
+    inner_->ExecuteCommandList(list, restore);
+  }
+  HRESULT FinishCommandList(BOOL restore, CommandList** list) override {
+    Record("FinishCommandList", Format("%d", restore));
+    return inner_->FinishCommandList(restore, list);
+  }
+
+  // Getters change nothing: forwarded, not recorded.
+  DEVICE_CONTEXT_TYPE GetType() override { return inner_->GetType(); }
+  UINT GetContextFlags() override { return inner_->GetContextFlags(); }
+  void IAGetInputLayout(InputLayout** l) override { inner_->IAGetInputLayout(l); }
+  void IAGetVertexBuffers(UINT start, UINT n, Buffer** b, UINT* strides, UINT* offsets) override {
+    inner_->IAGetVertexBuffers(start, n, b, strides, offsets);
+  }
+  void IAGetIndexBuffer(Buffer** b, DXGI_FORMAT* format, UINT* offset) override {
+    inner_->IAGetIndexBuffer(b, format, offset);
+  }
+  void IAGetPrimitiveTopology(PRIMITIVE_TOPOLOGY* t) override { inner_->IAGetPrimitiveTopology(t); }
+#define TRACE_STAGE_GETTERS(Prefix, Type)                                                                 \
+  void Prefix##GetShader(Type** s, ClassInstance** c, UINT* n) override { inner_->Prefix##GetShader(s, c, n); } \
+  void Prefix##GetConstantBuffers(UINT start, UINT n, Buffer** b) override {                              \
+    inner_->Prefix##GetConstantBuffers(start, n, b);                                                      \
+  }                                                                                                       \
+  void Prefix##GetShaderResources(UINT start, UINT n, ShaderResourceView** v) override {                  \
+    inner_->Prefix##GetShaderResources(start, n, v);                                                      \
+  }                                                                                                       \
+  void Prefix##GetSamplers(UINT start, UINT n, SamplerState** s) override { inner_->Prefix##GetSamplers(start, n, s); }
+  TRACE_STAGE_GETTERS(VS, VertexShader)
+  TRACE_STAGE_GETTERS(HS, HullShader)
+  TRACE_STAGE_GETTERS(DS, DomainShader)
+  TRACE_STAGE_GETTERS(GS, GeometryShader)
+  TRACE_STAGE_GETTERS(PS, PixelShader)
+  TRACE_STAGE_GETTERS(CS, ComputeShader)
+#undef TRACE_STAGE_GETTERS
+  void CSGetUnorderedAccessViews(UINT start, UINT n, UnorderedAccessView** u) override {
+    inner_->CSGetUnorderedAccessViews(start, n, u);
+  }
+  void RSGetState(RasterizerState** s) override { inner_->RSGetState(s); }
+  void RSGetViewports(UINT* n, VIEWPORT* v) override { inner_->RSGetViewports(n, v); }
+  void RSGetScissorRects(UINT* n, RECT* r) override { inner_->RSGetScissorRects(n, r); }
+  void OMGetRenderTargets(UINT n, RenderTargetView** rtvs, DepthStencilView** dsv) override {
+    inner_->OMGetRenderTargets(n, rtvs, dsv);
+  }
+  void OMGetBlendState(BlendState** s, FLOAT factor[4], UINT* mask) override { inner_->OMGetBlendState(s, factor, mask); }
+  void OMGetDepthStencilState(DepthStencilState** s, UINT* ref) override { inner_->OMGetDepthStencilState(s, ref); }
+
  private:
   void Record(const char* name, std::string args) {
     if (trace_->enabled) trace_->calls.push_back({name, std::move(args)});

@@ -143,7 +143,7 @@ HRESULT ViewTarget::InitBuffer(DeviceImpl& device, Resource* resource, DXGI_FORM
 namespace {
 
 VkImageViewType ViewType(UINT dimension, bool isArray, bool cube) {
-  if (cube) return VK_IMAGE_VIEW_TYPE_CUBE;
+  if (cube) return isArray ? VK_IMAGE_VIEW_TYPE_CUBE_ARRAY : VK_IMAGE_VIEW_TYPE_CUBE;
   if (dimension == RESOURCE_DIMENSION_TEXTURE1D) return isArray ? VK_IMAGE_VIEW_TYPE_1D_ARRAY : VK_IMAGE_VIEW_TYPE_1D;
   return isArray ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
 }
@@ -216,12 +216,22 @@ HRESULT ShaderResourceViewImpl::Initialize(Resource* resource) {
       range.layerCount = 6;
       cube = true;
       break;
+    case SRV_DIMENSION_TEXTURECUBEARRAY:
+      range.baseMipLevel = d.TextureCubeArray.MostDetailedMip;
+      range.levelCount = d.TextureCubeArray.MipLevels;
+      range.baseArrayLayer = d.TextureCubeArray.First2DArrayFace;
+      range.layerCount = d.TextureCubeArray.NumCubes * 6;
+      cube = isArray = true;
+      break;
     default:
       return dev.gpu().Refuse("CreateShaderResourceView: ViewDimension " + std::to_string(d.ViewDimension) +
                               " is not supported");
   }
   // D3D11: MipLevels -1 means "all remaining".
   if (range.levelCount == UINT(-1)) range.levelCount = texture->shape().mipLevels - range.baseMipLevel;
+  if (cube && !(texture->shape().miscFlags & RESOURCE_MISC_TEXTURECUBE))
+    return dev.gpu().Refuse("CreateShaderResourceView: a TEXTURECUBE or TEXTURECUBEARRAY view needs a texture "
+                            "created with RESOURCE_MISC_TEXTURECUBE");
   return InitTexture(dev, resource, d.Format, ViewType(texture->shape().dimension, isArray, cube), range,
                      VK_IMAGE_USAGE_SAMPLED_BIT, "CreateShaderResourceView");
 }
@@ -328,6 +338,10 @@ SHADER_RESOURCE_VIEW_DESC DefaultDesc(Resource* resource, const SHADER_RESOURCE_
   if (s.samples > 1) {
     d.ViewDimension = s.arraySize > 1 ? SRV_DIMENSION_TEXTURE2DMSARRAY : SRV_DIMENSION_TEXTURE2DMS;
     d.Texture2DMSArray = {0, s.arraySize};
+  } else if ((s.miscFlags & RESOURCE_MISC_TEXTURECUBE) && s.arraySize > 6) {
+    // The whole resource: every cube of a cube array, as the D3D11 runtime does.
+    d.ViewDimension = SRV_DIMENSION_TEXTURECUBEARRAY;
+    d.TextureCubeArray = {0, s.mipLevels, 0, s.arraySize / 6};
   } else if (s.miscFlags & RESOURCE_MISC_TEXTURECUBE) {
     d.ViewDimension = SRV_DIMENSION_TEXTURECUBE;
     d.TextureCube = {0, s.mipLevels};

@@ -43,6 +43,7 @@ void GpuTest::SetUp() {
   rhi::DEVICE_OPTIONS options;
   options.EnableValidation = rhi::TRUE;
   options.OnMessage = [this](rhi::MESSAGE_CATEGORY category, rhi::MESSAGE_SEVERITY severity, const char* text) {
+    std::lock_guard lock(messagesMutex_);  // the device is free-threaded: messages come from any thread
     messages_.push_back({category, severity, text});
   };
   ASSERT_EQ(rhi::CreateDevice(&options, device.GetAddressOf(), context.GetAddressOf()), rhi::S_OK);

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <mutex>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -79,6 +80,7 @@ class GpuTest : public ::testing::Test {
   ComPtr<rhi::Device> device;
   ComPtr<rhi::DeviceContext> context;
   std::vector<Message> messages_;
+  std::mutex messagesMutex_;
 };
 
 }  // namespace rhi_test

@@ -1,10 +1,10 @@
-# Runs fxtool once and checks its exit code and output (ctest, see CMakeLists.txt).
-#   cmake -DFXTOOL=path -DARGS="a|b|c" -DEXPECT_RC=N [-DEXPECT_STDOUT=regex]... [-DEXPECT_STDERR=regex] -P check.cmake
+# Runs a program (fxtool, replay, demo) once and checks its exit code and output (ctest, see CMakeLists.txt).
+#   cmake -DPROGRAM=path -DARGS="a|b|c" -DEXPECT_RC=N [-DEXPECT_STDOUT=regex]... [-DEXPECT_STDERR=regex] -P check.cmake
 # '|' separates arguments; EXPECT_STDOUT / EXPECT_STDERR are '|'-free regexes,
 # several may be given in EXPECT_STDOUT separated by '@@'.
 string(REPLACE "|" ";" args "${ARGS}")
-execute_process(COMMAND ${FXTOOL} ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-message("fxtool ${args}\n--- exit ${rc}\n--- stdout\n${out}--- stderr\n${err}")
+execute_process(COMMAND ${PROGRAM} ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${PROGRAM} ${args}\n--- exit ${rc}\n--- stdout\n${out}--- stderr\n${err}")
 if(NOT "${rc}" STREQUAL "${EXPECT_RC}")
   message(FATAL_ERROR "exit code ${rc}, expected ${EXPECT_RC}")
 endif()

@@ -103,9 +103,19 @@ TEST(Formats, FloatAndUintLayouts) {
 }
 
 TEST(Formats, UnmodelledFormatsAreRejected) {
-  EXPECT_FALSE(IsReferenceFormat(DXGI_FORMAT_R8G8_UNORM));
+  EXPECT_FALSE(IsReferenceFormat(DXGI_FORMAT_R8G8_SNORM));
   EXPECT_TRUE(IsReferenceFormat(DXGI_FORMAT_R10G10B10A2_UNORM));
-  EXPECT_THROW(Encode(DXGI_FORMAT_R16_UNORM, {0, 0, 0, 0}), std::invalid_argument);
+  EXPECT_THROW(Encode(DXGI_FORMAT_R16_SINT, {0, 0, 0, 0}), std::invalid_argument);
+}
+
+// 16-bit UNORM (FS 3.2.3.6 with n = 16) and the BGRX sRGB layout.
+TEST(Formats, SixteenBitUnormAndBgrxSrgb) {
+  // 0.5 * 65535 + 0.5 = 32768 -> 00 80; 1.0 -> FF FF.
+  EXPECT_EQ(PackPixel(DXGI_FORMAT_R16G16_UNORM, Encode(DXGI_FORMAT_R16G16_UNORM, {0.5f, 1.0f, 0, 0})),
+            (std::vector<uint8_t>{0x00, 0x80, 0xFF, 0xFF}));
+  const StoredColor bgrx = UnpackPixel(DXGI_FORMAT_B8G8R8X8_UNORM_SRGB, std::vector<uint8_t>{255, 0, 0, 77});
+  EXPECT_EQ(bgrx, (StoredColor{{0, 0, 255, 0}}));  // B in the first byte; the X byte is no channel
+  EXPECT_EQ(Decode(DXGI_FORMAT_B8G8R8X8_UNORM_SRGB, bgrx)[3], 1.0f);
 }
 
 }  // namespace

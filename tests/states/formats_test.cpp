@@ -27,8 +27,14 @@ constexpr DXGI_FORMAT kAllDeclared[] = {
     DXGI_FORMAT_R8G8_SNORM, DXGI_FORMAT_R8G8_SINT, DXGI_FORMAT_R16_TYPELESS, DXGI_FORMAT_R16_FLOAT,
     DXGI_FORMAT_D16_UNORM, DXGI_FORMAT_R16_UNORM, DXGI_FORMAT_R16_UINT, DXGI_FORMAT_R16_SNORM, DXGI_FORMAT_R16_SINT,
     DXGI_FORMAT_R8_TYPELESS, DXGI_FORMAT_R8_UNORM, DXGI_FORMAT_R8_UINT, DXGI_FORMAT_R8_SNORM, DXGI_FORMAT_R8_SINT,
-    DXGI_FORMAT_A8_UNORM, DXGI_FORMAT_B8G8R8A8_UNORM, DXGI_FORMAT_B8G8R8X8_UNORM, DXGI_FORMAT_B8G8R8A8_TYPELESS,
+    DXGI_FORMAT_A8_UNORM, DXGI_FORMAT_BC1_TYPELESS, DXGI_FORMAT_BC1_UNORM, DXGI_FORMAT_BC1_UNORM_SRGB,
+    DXGI_FORMAT_BC2_TYPELESS, DXGI_FORMAT_BC2_UNORM, DXGI_FORMAT_BC2_UNORM_SRGB, DXGI_FORMAT_BC3_TYPELESS,
+    DXGI_FORMAT_BC3_UNORM, DXGI_FORMAT_BC3_UNORM_SRGB, DXGI_FORMAT_BC4_TYPELESS, DXGI_FORMAT_BC4_UNORM,
+    DXGI_FORMAT_BC4_SNORM, DXGI_FORMAT_BC5_TYPELESS, DXGI_FORMAT_BC5_UNORM, DXGI_FORMAT_BC5_SNORM,
+    DXGI_FORMAT_B8G8R8A8_UNORM, DXGI_FORMAT_B8G8R8X8_UNORM, DXGI_FORMAT_B8G8R8A8_TYPELESS,
     DXGI_FORMAT_B8G8R8A8_UNORM_SRGB, DXGI_FORMAT_B8G8R8X8_TYPELESS, DXGI_FORMAT_B8G8R8X8_UNORM_SRGB,
+    DXGI_FORMAT_BC6H_TYPELESS, DXGI_FORMAT_BC6H_UF16, DXGI_FORMAT_BC6H_SF16, DXGI_FORMAT_BC7_TYPELESS,
+    DXGI_FORMAT_BC7_UNORM, DXGI_FORMAT_BC7_UNORM_SRGB,
 };
 
 TEST(Formats, EveryDeclaredFormatHasAnEntry) {
@@ -48,7 +54,7 @@ TEST(Formats, UnknownAndUndeclaredValuesHaveNoEntry) {
   EXPECT_EQ(GetFormatInfo(DXGI_FORMAT_UNKNOWN), nullptr);
   EXPECT_EQ(GetFormatInfo(static_cast<DXGI_FORMAT>(19)), nullptr);  // R32G8X24_TYPELESS: not declared
   EXPECT_EQ(GetFormatInfo(static_cast<DXGI_FORMAT>(22)), nullptr);  // X32_TYPELESS_G8X24_UINT: not declared
-  EXPECT_EQ(GetFormatInfo(static_cast<DXGI_FORMAT>(71)), nullptr);  // BC1: not declared
+  EXPECT_EQ(GetFormatInfo(static_cast<DXGI_FORMAT>(85)), nullptr);  // B5G6R5_UNORM: not declared
   EXPECT_EQ(GetFormatInfo(static_cast<DXGI_FORMAT>(1000)), nullptr);
   EXPECT_EQ(FormatName(static_cast<DXGI_FORMAT>(1000)), nullptr);
 }
@@ -65,6 +71,28 @@ TEST(Formats, FamiliesAreConsistent) {
       EXPECT_EQ(f.family, f.format) << f.name;
     }
   }
+}
+
+// D3D11's block-compressed layout: 4x4 blocks of 8 (BC1, BC4) or 16 bytes, sizes rounded up
+// to whole blocks (a 1x1 or 2x2 mip level still takes one block); shader resources only.
+TEST(Formats, BlockCompressedSizesRoundUpToWholeBlocks) {
+  const FormatInfo& bc1 = *GetFormatInfo(DXGI_FORMAT_BC1_UNORM);
+  const FormatInfo& bc7 = *GetFormatInfo(DXGI_FORMAT_BC7_UNORM_SRGB);
+  EXPECT_EQ(bc1.blockSize, 4);
+  EXPECT_EQ(RowPitchBytes(bc1, 16), 32u);
+  EXPECT_EQ(RowPitchBytes(bc1, 1), 8u);
+  EXPECT_EQ(RowPitchBytes(bc1, 5), 16u);
+  EXPECT_EQ(RowCount(bc1, 2), 1u);
+  EXPECT_EQ(RowCount(bc1, 9), 3u);
+  EXPECT_EQ(RowPitchBytes(bc7, 8), 32u);
+  EXPECT_TRUE(bc7.isSrgb);
+  EXPECT_EQ(bc7.bindFlags, UINT(BIND_SHADER_RESOURCE));
+  EXPECT_EQ(GetFormatInfo(DXGI_FORMAT_BC4_SNORM)->bytesPerElement, 8);
+  EXPECT_EQ(GetFormatInfo(DXGI_FORMAT_BC6H_SF16)->kind, ComponentKind::Float);
+  const FormatInfo& rgba = *GetFormatInfo(DXGI_FORMAT_R8G8B8A8_UNORM);
+  EXPECT_EQ(rgba.blockSize, 1);
+  EXPECT_EQ(RowPitchBytes(rgba, 5), 20u);
+  EXPECT_EQ(RowCount(rgba, 5), 5u);
 }
 
 TEST(Formats, R8G8B8A8) {

@@ -1,11 +1,13 @@
 // The entry points and the Effect / Technique lookups.
 #include <strings.h>
 
+#include <cstdio>
 #include <exception>
 #include <set>
 
 #include "effect_impl.h"
 #include "fx/effect_parser.h"
+#include "rhi/wide_path.h"
 #include "variables.h"
 
 namespace fx {
@@ -64,6 +66,12 @@ HRESULT Guarded(const EFFECT_OPTIONS& options, rhi::Device* device, Effect** out
     if (options.Errors) *options.Errors = std::string("<effect>: error: internal error: ") + e.what() + "\n";
     return rhi::E_FAIL;
   }
+}
+
+std::string ToHex(UINT value) {
+  char text[9];
+  std::snprintf(text, sizeof text, "%X", value);
+  return text;
 }
 
 }  // namespace
@@ -165,6 +173,46 @@ HRESULT CreateEffectFromFile(const char* pFileName, const EFFECT_OPTIONS& option
   if (!pFileName) return rhi::E_INVALIDARG;
   return detail::Guarded(options, pDevice, ppEffect,
                          [&] { return ParseEffectFile(pFileName, detail::ToParseOptions(options)); });
+}
+
+HRESULT CreateEffectFromFile(const wchar_t* pFileName, const EFFECT_OPTIONS& options, rhi::Device* pDevice,
+                             Effect** ppEffect) {
+  if (!pFileName) return rhi::E_INVALIDARG;
+  return CreateEffectFromFile(rhi::WidePathToUtf8(pFileName).c_str(), options, pDevice, ppEffect);
+}
+
+HRESULT CreateEffectFromFile(const std::filesystem::path& fileName, const EFFECT_OPTIONS& options,
+                             rhi::Device* pDevice, Effect** ppEffect) {
+  return CreateEffectFromFile(fileName.c_str(), options, pDevice, ppEffect);
+}
+
+HRESULT CreateEffectFromMemory(const void* pData, SIZE_T DataLength, const char* pSourceName,
+                               const std::filesystem::path& includeFolder, UINT FXFlags, rhi::Device* pDevice,
+                               Effect** ppEffect, std::string* pErrors) {
+  const char* name = pSourceName ? pSourceName : "<memory>";
+  std::string errors;
+  HRESULT hr = rhi::S_OK;
+  if (FXFlags & COMPILE_EFFECT_CHILD_EFFECT) {
+    errors = std::string(name) + ": error: effect pools (COMPILE_EFFECT_CHILD_EFFECT) are not supported, as in FX11\n";
+    hr = rhi::E_NOTIMPL;
+  } else if (FXFlags & ~(COMPILE_EFFECT_CHILD_EFFECT | COMPILE_EFFECT_ALLOW_SLOW_OPS)) {
+    errors = std::string(name) + ": error: unknown FXFlags bits 0x" +
+             detail::ToHex(FXFlags & ~(COMPILE_EFFECT_CHILD_EFFECT | COMPILE_EFFECT_ALLOW_SLOW_OPS)) +
+             " (only COMPILE_EFFECT_* flags are effect flags)\n";
+    hr = rhi::E_INVALIDARG;
+  } else {
+    EFFECT_OPTIONS options;
+    if (!includeFolder.empty()) options.IncludeDirs.push_back(includeFolder.string());
+    options.Errors = &errors;
+    hr = CreateEffectFromMemory(pData, DataLength, name, options, pDevice, ppEffect);
+  }
+  if (rhi::FAILED(hr) && ppEffect) *ppEffect = nullptr;
+  if (pErrors) {
+    *pErrors = errors;
+  } else if (!errors.empty()) {
+    std::fputs(errors.c_str(), stderr);
+  }
+  return hr;
 }
 
 HRESULT CreateEffectFromMemory(const void* pData, SIZE_T DataLength, const char* pVirtualFileName,

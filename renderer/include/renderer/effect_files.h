@@ -14,7 +14,8 @@ namespace renderer {
 
 using EffectDefines = std::vector<std::pair<std::string, std::string>>;
 
-// shaders_hlsl/ of the source tree, the include directory of every effect.
+// The project's effect folder (fx::ShaderDirectory: found beside the executable or the
+// install prefix, or $D3D11VK_SHADER_DIR), the include directory of every effect.
 const std::string& ShaderDirectory();
 
 // shaders_hlsl/<file> with `defines`; null on failure, with `error` naming the

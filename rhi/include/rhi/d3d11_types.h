@@ -21,21 +21,51 @@ using HRESULT = int32_t;
 using LPCSTR = const char*;
 using SIZE_T = uint64_t;
 
+// TRUE, FALSE, SUCCEEDED, FAILED and the HRESULT codes are macros in the
+// platform's headers (<windows.h>, <winerror.h>, or DXVK's native ones). A port
+// that includes those too keeps their definitions, which have the same values,
+// and each name here steps aside (as DXVK's native headers do): the #ifndefs.
+#ifndef TRUE
 inline constexpr BOOL TRUE = 1;
+#endif
+#ifndef FALSE
 inline constexpr BOOL FALSE = 0;
+#endif
 
 // HRESULT values the runtime returns (the Windows values).
+#ifndef S_OK
 inline constexpr HRESULT S_OK = 0;
+#endif
+#ifndef S_FALSE
 inline constexpr HRESULT S_FALSE = 1;
+#endif
+#ifndef E_FAIL
 inline constexpr HRESULT E_FAIL = static_cast<HRESULT>(0x80004005u);
+#endif
+#ifndef E_INVALIDARG
 inline constexpr HRESULT E_INVALIDARG = static_cast<HRESULT>(0x80070057u);
+#endif
+#ifndef E_OUTOFMEMORY
 inline constexpr HRESULT E_OUTOFMEMORY = static_cast<HRESULT>(0x8007000Eu);
+#endif
+#ifndef E_NOTIMPL
 inline constexpr HRESULT E_NOTIMPL = static_cast<HRESULT>(0x80004001u);
+#endif
+#ifndef DXGI_ERROR_UNSUPPORTED
 inline constexpr HRESULT DXGI_ERROR_UNSUPPORTED = static_cast<HRESULT>(0x887A0004u);
+#endif
+#ifndef DXGI_ERROR_WAS_STILL_DRAWING
 inline constexpr HRESULT DXGI_ERROR_WAS_STILL_DRAWING = static_cast<HRESULT>(0x887A000Au);
+#endif
+#ifndef DXGI_ERROR_DEVICE_REMOVED
 inline constexpr HRESULT DXGI_ERROR_DEVICE_REMOVED = static_cast<HRESULT>(0x887A0005u);
+#endif
+#ifndef SUCCEEDED
 inline constexpr bool SUCCEEDED(HRESULT hr) { return hr >= 0; }
+#endif
+#ifndef FAILED
 inline constexpr bool FAILED(HRESULT hr) { return hr < 0; }
+#endif
 
 inline constexpr UINT SIMULTANEOUS_RENDER_TARGET_COUNT = 8;
 inline constexpr UINT IA_VERTEX_INPUT_RESOURCE_SLOT_COUNT = 32;
@@ -48,6 +78,7 @@ inline constexpr UINT KEEP_RENDER_TARGETS_AND_DEPTH_STENCIL = 0xffffffffu;
 inline constexpr UINT KEEP_UNORDERED_ACCESS_VIEWS = 0xffffffffu;
 inline constexpr UINT VIEWPORT_AND_SCISSORRECT_OBJECT_COUNT_PER_PIPELINE = 16;
 inline constexpr UINT SO_BUFFER_SLOT_COUNT = 4;
+inline constexpr UINT CS_DISPATCH_MAX_THREAD_GROUPS_PER_DIMENSION = 65535;
 inline constexpr UINT SO_STREAM_COUNT = 4;
 inline constexpr UINT SO_NO_RASTERIZED_STREAM = 0xffffffffu;
 inline constexpr UINT APPEND_ALIGNED_ELEMENT = 0xffffffffu;
@@ -126,12 +157,34 @@ enum DXGI_FORMAT : UINT {
   DXGI_FORMAT_R8_SNORM = 63,
   DXGI_FORMAT_R8_SINT = 64,
   DXGI_FORMAT_A8_UNORM = 65,
+  // Block-compressed: 4x4 texel blocks of 8 (BC1, BC4) or 16 bytes (the others).
+  DXGI_FORMAT_BC1_TYPELESS = 70,
+  DXGI_FORMAT_BC1_UNORM = 71,
+  DXGI_FORMAT_BC1_UNORM_SRGB = 72,
+  DXGI_FORMAT_BC2_TYPELESS = 73,
+  DXGI_FORMAT_BC2_UNORM = 74,
+  DXGI_FORMAT_BC2_UNORM_SRGB = 75,
+  DXGI_FORMAT_BC3_TYPELESS = 76,
+  DXGI_FORMAT_BC3_UNORM = 77,
+  DXGI_FORMAT_BC3_UNORM_SRGB = 78,
+  DXGI_FORMAT_BC4_TYPELESS = 79,
+  DXGI_FORMAT_BC4_UNORM = 80,
+  DXGI_FORMAT_BC4_SNORM = 81,
+  DXGI_FORMAT_BC5_TYPELESS = 82,
+  DXGI_FORMAT_BC5_UNORM = 83,
+  DXGI_FORMAT_BC5_SNORM = 84,
   DXGI_FORMAT_B8G8R8A8_UNORM = 87,
   DXGI_FORMAT_B8G8R8X8_UNORM = 88,
   DXGI_FORMAT_B8G8R8A8_TYPELESS = 90,
   DXGI_FORMAT_B8G8R8A8_UNORM_SRGB = 91,
   DXGI_FORMAT_B8G8R8X8_TYPELESS = 92,
   DXGI_FORMAT_B8G8R8X8_UNORM_SRGB = 93,
+  DXGI_FORMAT_BC6H_TYPELESS = 94,
+  DXGI_FORMAT_BC6H_UF16 = 95,
+  DXGI_FORMAT_BC6H_SF16 = 96,
+  DXGI_FORMAT_BC7_TYPELESS = 97,
+  DXGI_FORMAT_BC7_UNORM = 98,
+  DXGI_FORMAT_BC7_UNORM_SRGB = 99,
 };
 
 struct DXGI_SAMPLE_DESC {
@@ -362,6 +415,7 @@ enum CPU_ACCESS_FLAG : UINT {
 
 enum RESOURCE_MISC_FLAG : UINT {
   RESOURCE_MISC_GENERATE_MIPS = 0x1,
+  RESOURCE_MISC_SHARED = 0x2,  // refused: no resource is shared across devices or processes
   RESOURCE_MISC_TEXTURECUBE = 0x4,
   RESOURCE_MISC_DRAWINDIRECT_ARGS = 0x10,
   RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS = 0x20,
@@ -513,6 +567,7 @@ struct TEX2D_ARRAY_SRV { UINT MostDetailedMip; UINT MipLevels; UINT FirstArraySl
 struct TEX2DMS_SRV { UINT UnusedField_NothingToDefine; };
 struct TEX2DMS_ARRAY_SRV { UINT FirstArraySlice; UINT ArraySize; };
 struct TEXCUBE_SRV { UINT MostDetailedMip; UINT MipLevels; };
+struct TEXCUBE_ARRAY_SRV { UINT MostDetailedMip; UINT MipLevels; UINT First2DArrayFace; UINT NumCubes; };
 
 struct SHADER_RESOURCE_VIEW_DESC {
   DXGI_FORMAT Format;
@@ -526,6 +581,7 @@ struct SHADER_RESOURCE_VIEW_DESC {
     TEX2DMS_SRV Texture2DMS;
     TEX2DMS_ARRAY_SRV Texture2DMSArray;
     TEXCUBE_SRV TextureCube;
+    TEXCUBE_ARRAY_SRV TextureCubeArray;
     BUFFEREX_SRV BufferEx;
   };
 };
@@ -659,6 +715,8 @@ enum QUERY : UINT {
 };
 
 enum ASYNC_GETDATA_FLAG : UINT { ASYNC_GETDATA_DONOTFLUSH = 0x1 };
+// A predicate with the hint may let rendering go ahead while its result is not known.
+enum QUERY_MISC_FLAG : UINT { QUERY_MISC_PREDICATEHINT = 0x1 };
 
 struct QUERY_DESC {
   QUERY Query;
@@ -687,6 +745,143 @@ struct QUERY_DATA_PIPELINE_STATISTICS {
 struct QUERY_DATA_SO_STATISTICS {
   UINT64 NumPrimitivesWritten;
   UINT64 PrimitivesStorageNeeded;
+};
+
+// ---------------------------------------------------------------------------
+// Device queries, private data, counters (ID3D11Device's non-creating methods)
+
+using HANDLE = void*;
+using LPSTR = char*;
+
+struct GUID {
+  uint32_t Data1;
+  uint16_t Data2;
+  uint16_t Data3;
+  uint8_t Data4[8];
+};
+using REFGUID = const GUID&;
+using REFIID = const GUID&;
+inline bool operator==(const GUID& a, const GUID& b) {
+  if (a.Data1 != b.Data1 || a.Data2 != b.Data2 || a.Data3 != b.Data3) return false;
+  for (int i = 0; i < 8; ++i)
+    if (a.Data4[i] != b.Data4[i]) return false;
+  return true;
+}
+// The private-data GUID whose value (a string, not null-terminated) names an
+// object for debuggers; this backend passes it on as the Vulkan object's name.
+inline constexpr GUID WKPDID_D3DDebugObjectName = {0x429b8c22, 0x9188, 0x4b0c, {0x87, 0x42, 0xac, 0xb0, 0xbf, 0x85, 0xc2, 0x00}};
+
+inline constexpr HRESULT DXGI_ERROR_NOT_FOUND = static_cast<HRESULT>(0x887A0002u);
+inline constexpr HRESULT DXGI_ERROR_MORE_DATA = static_cast<HRESULT>(0x887A0003u);
+inline constexpr HRESULT DXGI_ERROR_DEVICE_HUNG = static_cast<HRESULT>(0x887A0006u);
+inline constexpr HRESULT DXGI_ERROR_DEVICE_RESET = static_cast<HRESULT>(0x887A0007u);
+inline constexpr HRESULT DXGI_ERROR_INVALID_CALL = static_cast<HRESULT>(0x887A0001u);
+
+// D3D_FEATURE_LEVEL keeps its D3D_ prefix (it has no D3D11_ name).
+enum D3D_FEATURE_LEVEL : UINT {
+  D3D_FEATURE_LEVEL_9_1 = 0x9100,
+  D3D_FEATURE_LEVEL_9_2 = 0x9200,
+  D3D_FEATURE_LEVEL_9_3 = 0x9300,
+  D3D_FEATURE_LEVEL_10_0 = 0xa000,
+  D3D_FEATURE_LEVEL_10_1 = 0xa100,
+  D3D_FEATURE_LEVEL_11_0 = 0xb000,
+};
+
+enum CREATE_DEVICE_FLAG : UINT {
+  CREATE_DEVICE_SINGLETHREADED = 0x1,
+  CREATE_DEVICE_DEBUG = 0x2,
+};
+
+enum RAISE_FLAG : UINT { RAISE_FLAG_DRIVER_INTERNAL_ERROR = 0x1 };
+
+enum FORMAT_SUPPORT : UINT {
+  FORMAT_SUPPORT_BUFFER = 0x1,
+  FORMAT_SUPPORT_IA_VERTEX_BUFFER = 0x2,
+  FORMAT_SUPPORT_IA_INDEX_BUFFER = 0x4,
+  FORMAT_SUPPORT_SO_BUFFER = 0x8,
+  FORMAT_SUPPORT_TEXTURE1D = 0x10,
+  FORMAT_SUPPORT_TEXTURE2D = 0x20,
+  FORMAT_SUPPORT_TEXTURE3D = 0x40,
+  FORMAT_SUPPORT_TEXTURECUBE = 0x80,
+  FORMAT_SUPPORT_SHADER_LOAD = 0x100,
+  FORMAT_SUPPORT_SHADER_SAMPLE = 0x200,
+  FORMAT_SUPPORT_SHADER_SAMPLE_COMPARISON = 0x400,
+  FORMAT_SUPPORT_SHADER_SAMPLE_MONO_TEXT = 0x800,
+  FORMAT_SUPPORT_MIP = 0x1000,
+  FORMAT_SUPPORT_MIP_AUTOGEN = 0x2000,
+  FORMAT_SUPPORT_RENDER_TARGET = 0x4000,
+  FORMAT_SUPPORT_BLENDABLE = 0x8000,
+  FORMAT_SUPPORT_DEPTH_STENCIL = 0x10000,
+  FORMAT_SUPPORT_CPU_LOCKABLE = 0x20000,
+  FORMAT_SUPPORT_MULTISAMPLE_RESOLVE = 0x40000,
+  FORMAT_SUPPORT_DISPLAY = 0x80000,
+  FORMAT_SUPPORT_CAST_WITHIN_BIT_LAYOUT = 0x100000,
+  FORMAT_SUPPORT_MULTISAMPLE_RENDERTARGET = 0x200000,
+  FORMAT_SUPPORT_MULTISAMPLE_LOAD = 0x400000,
+  FORMAT_SUPPORT_SHADER_GATHER = 0x800000,
+  FORMAT_SUPPORT_BACK_BUFFER_CAST = 0x1000000,
+  FORMAT_SUPPORT_TYPED_UNORDERED_ACCESS_VIEW = 0x2000000,
+  FORMAT_SUPPORT_SHADER_GATHER_COMPARISON = 0x4000000,
+};
+
+enum FORMAT_SUPPORT2 : UINT {
+  FORMAT_SUPPORT2_UAV_ATOMIC_ADD = 0x1,
+  FORMAT_SUPPORT2_UAV_ATOMIC_BITWISE_OPS = 0x2,
+  FORMAT_SUPPORT2_UAV_ATOMIC_COMPARE_STORE_OR_COMPARE_EXCHANGE = 0x4,
+  FORMAT_SUPPORT2_UAV_ATOMIC_EXCHANGE = 0x8,
+  FORMAT_SUPPORT2_UAV_ATOMIC_SIGNED_MIN_OR_MAX = 0x10,
+  FORMAT_SUPPORT2_UAV_ATOMIC_UNSIGNED_MIN_OR_MAX = 0x20,
+  FORMAT_SUPPORT2_UAV_TYPED_LOAD = 0x40,
+  FORMAT_SUPPORT2_UAV_TYPED_STORE = 0x80,
+};
+
+// The features of Direct3D 11.0's CheckFeatureSupport.
+enum FEATURE : UINT {
+  FEATURE_THREADING = 0,
+  FEATURE_DOUBLES = 1,
+  FEATURE_FORMAT_SUPPORT = 2,
+  FEATURE_FORMAT_SUPPORT2 = 3,
+  FEATURE_D3D10_X_HARDWARE_OPTIONS = 4,
+};
+struct FEATURE_DATA_THREADING {
+  BOOL DriverConcurrentCreates;
+  BOOL DriverCommandLists;
+};
+struct FEATURE_DATA_DOUBLES {
+  BOOL DoublePrecisionFloatShaderOps;
+};
+struct FEATURE_DATA_FORMAT_SUPPORT {
+  DXGI_FORMAT InFormat;
+  UINT OutFormatSupport;
+};
+struct FEATURE_DATA_FORMAT_SUPPORT2 {
+  DXGI_FORMAT InFormat;
+  UINT OutFormatSupport2;
+};
+struct FEATURE_DATA_D3D10_X_HARDWARE_OPTIONS {
+  BOOL ComputeShaders_Plus_RawAndStructuredBuffers_Via_Shader_4_x;
+};
+
+enum COUNTER : UINT { COUNTER_DEVICE_DEPENDENT_0 = 0x40000000 };
+enum COUNTER_TYPE : UINT {
+  COUNTER_TYPE_FLOAT32 = 0,
+  COUNTER_TYPE_UINT16 = 1,
+  COUNTER_TYPE_UINT32 = 2,
+  COUNTER_TYPE_UINT64 = 3,
+};
+struct COUNTER_DESC {
+  COUNTER Counter;
+  UINT MiscFlags;
+};
+struct COUNTER_INFO {
+  COUNTER LastDeviceDependentCounter;
+  UINT NumSimultaneousCounters;
+  UINT8 NumDetectableParallelUnits;
+};
+
+enum DEVICE_CONTEXT_TYPE : UINT {
+  DEVICE_CONTEXT_IMMEDIATE = 0,
+  DEVICE_CONTEXT_DEFERRED = 1,
 };
 
 }  // namespace rhi

@@ -176,8 +176,24 @@ class Query : public Asynchronous {
   virtual void GetDesc(QUERY_DESC* pDesc) = 0;
 };
 
+// A query whose BOOL result can predicate rendering (SetPredication).
+class Predicate : public Query {};
+
+// No counter can be created (CheckCounterInfo reports none); the type exists for CreateCounter's signature.
+class Counter : public Asynchronous {
+ public:
+  virtual void GetDesc(COUNTER_DESC* pDesc) = 0;
+};
+
+// Commands recorded by a deferred context (FinishCommandList), run by the
+// immediate context's ExecuteCommandList as often as wanted.
+class CommandList : public DeviceChild {
+ public:
+  virtual UINT GetContextFlags() = 0;
+};
+
 // ---------------------------------------------------------------------------
-// The immediate context
+// The immediate context, and deferred contexts (CreateDeferredContext)
 
 class DeviceContext : public DeviceChild {
  public:
@@ -187,6 +203,11 @@ class DeviceContext : public DeviceChild {
                                   const UINT* pStrides, const UINT* pOffsets) = 0;
   virtual void IASetIndexBuffer(Buffer* pIndexBuffer, DXGI_FORMAT Format, UINT Offset) = 0;
   virtual void IASetPrimitiveTopology(PRIMITIVE_TOPOLOGY Topology) = 0;
+  virtual void IAGetInputLayout(InputLayout** ppInputLayout) = 0;
+  virtual void IAGetVertexBuffers(UINT StartSlot, UINT NumBuffers, Buffer** ppVertexBuffers, UINT* pStrides,
+                                  UINT* pOffsets) = 0;
+  virtual void IAGetIndexBuffer(Buffer** pIndexBuffer, DXGI_FORMAT* Format, UINT* Offset) = 0;
+  virtual void IAGetPrimitiveTopology(PRIMITIVE_TOPOLOGY* pTopology) = 0;
 
   // Shader stages
   virtual void VSSetShader(VertexShader* pShader, ClassInstance* const* ppClassInstances, UINT NumClassInstances) = 0;
@@ -195,12 +216,25 @@ class DeviceContext : public DeviceChild {
   virtual void GSSetShader(GeometryShader* pShader, ClassInstance* const* ppClassInstances, UINT NumClassInstances) = 0;
   virtual void PSSetShader(PixelShader* pShader, ClassInstance* const* ppClassInstances, UINT NumClassInstances) = 0;
   virtual void CSSetShader(ComputeShader* pShader, ClassInstance* const* ppClassInstances, UINT NumClassInstances) = 0;
+  // pNumClassInstances (if not null) is set to 0: there are no class instances.
+  virtual void VSGetShader(VertexShader** ppShader, ClassInstance** ppClassInstances, UINT* pNumClassInstances) = 0;
+  virtual void HSGetShader(HullShader** ppShader, ClassInstance** ppClassInstances, UINT* pNumClassInstances) = 0;
+  virtual void DSGetShader(DomainShader** ppShader, ClassInstance** ppClassInstances, UINT* pNumClassInstances) = 0;
+  virtual void GSGetShader(GeometryShader** ppShader, ClassInstance** ppClassInstances, UINT* pNumClassInstances) = 0;
+  virtual void PSGetShader(PixelShader** ppShader, ClassInstance** ppClassInstances, UINT* pNumClassInstances) = 0;
+  virtual void CSGetShader(ComputeShader** ppShader, ClassInstance** ppClassInstances, UINT* pNumClassInstances) = 0;
 
 #define RHI_DECLARE_STAGE_BINDINGS(Prefix)                                                                 \
   virtual void Prefix##SetConstantBuffers(UINT StartSlot, UINT NumBuffers, Buffer* const* ppConstantBuffers) = 0; \
   virtual void Prefix##SetShaderResources(UINT StartSlot, UINT NumViews,                                  \
                                           ShaderResourceView* const* ppShaderResourceViews) = 0;          \
-  virtual void Prefix##SetSamplers(UINT StartSlot, UINT NumSamplers, SamplerState* const* ppSamplers) = 0;
+  virtual void Prefix##SetSamplers(UINT StartSlot, UINT NumSamplers, SamplerState* const* ppSamplers) = 0; \
+  virtual void Prefix##GetConstantBuffers(UINT StartSlot, UINT NumBuffers, Buffer** ppConstantBuffers) = 0;      \
+  virtual void Prefix##GetShaderResources(UINT StartSlot, UINT NumViews,                                  \
+                                          ShaderResourceView** ppShaderResourceViews) = 0;                \
+  virtual void Prefix##GetSamplers(UINT StartSlot, UINT NumSamplers, SamplerState** ppSamplers) = 0;
+  // The getters return what the setters bound, each object with a reference the
+  // caller releases (null for an empty slot), as D3D11's do.
   RHI_DECLARE_STAGE_BINDINGS(VS)
   RHI_DECLARE_STAGE_BINDINGS(HS)
   RHI_DECLARE_STAGE_BINDINGS(DS)
@@ -211,6 +245,7 @@ class DeviceContext : public DeviceChild {
   virtual void CSSetUnorderedAccessViews(UINT StartSlot, UINT NumUAVs,
                                          UnorderedAccessView* const* ppUnorderedAccessViews,
                                          const UINT* pUAVInitialCounts) = 0;
+  virtual void CSGetUnorderedAccessViews(UINT StartSlot, UINT NumUAVs, UnorderedAccessView** ppUnorderedAccessViews) = 0;
 
   // Stream output
   virtual void SOSetTargets(UINT NumBuffers, Buffer* const* ppSOTargets, const UINT* pOffsets) = 0;
@@ -220,6 +255,11 @@ class DeviceContext : public DeviceChild {
   virtual void RSSetState(RasterizerState* pRasterizerState) = 0;
   virtual void RSSetViewports(UINT NumViewports, const VIEWPORT* pViewports) = 0;
   virtual void RSSetScissorRects(UINT NumRects, const RECT* pRects) = 0;
+  virtual void RSGetState(RasterizerState** ppRasterizerState) = 0;
+  // With pViewports null, *pNumViewports receives the bound count; else
+  // *pNumViewports are written, zeros past the bound ones. RSGetScissorRects likewise.
+  virtual void RSGetViewports(UINT* pNumViewports, VIEWPORT* pViewports) = 0;
+  virtual void RSGetScissorRects(UINT* pNumRects, RECT* pRects) = 0;
 
   // Output merger
   virtual void OMSetRenderTargets(UINT NumViews, RenderTargetView* const* ppRenderTargetViews,
@@ -240,6 +280,10 @@ class DeviceContext : public DeviceChild {
                                                          UnorderedAccessView** ppUnorderedAccessViews) = 0;
   virtual void OMSetBlendState(BlendState* pBlendState, const FLOAT BlendFactor[4], UINT SampleMask) = 0;
   virtual void OMSetDepthStencilState(DepthStencilState* pDepthStencilState, UINT StencilRef) = 0;
+  virtual void OMGetRenderTargets(UINT NumViews, RenderTargetView** ppRenderTargetViews,
+                                  DepthStencilView** ppDepthStencilView) = 0;
+  virtual void OMGetBlendState(BlendState** ppBlendState, FLOAT BlendFactor[4], UINT* pSampleMask) = 0;
+  virtual void OMGetDepthStencilState(DepthStencilState** ppDepthStencilState, UINT* pStencilRef) = 0;
 
   // Draws and dispatches
   virtual void Draw(UINT VertexCount, UINT StartVertexLocation) = 0;
@@ -275,14 +319,37 @@ class DeviceContext : public DeviceChild {
   // Writes the hidden counter of an append/counter UAV as a UINT at DstAlignedByteOffset.
   virtual void CopyStructureCount(Buffer* pDstBuffer, UINT DstAlignedByteOffset,
                                   UnorderedAccessView* pSrcView) = 0;
+  // Fills the view's mip levels below its most detailed one, each the 2x2 box
+  // filter of the level above; the resource needs RESOURCE_MISC_GENERATE_MIPS.
+  virtual void GenerateMips(ShaderResourceView* pShaderResourceView) = 0;
 
   // Queries
   virtual void Begin(Asynchronous* pAsync) = 0;
   virtual void End(Asynchronous* pAsync) = 0;
   virtual HRESULT GetData(Asynchronous* pAsync, void* pData, UINT DataSize, UINT GetDataFlags) = 0;
+  // While a predicate is set, Draw*, Dispatch*, Clear*, Copy*, UpdateSubresource,
+  // ResolveSubresource and GenerateMips are skipped when its result equals
+  // PredicateValue. The result is read when SetPredication is called, waiting
+  // for it unless the predicate has QUERY_MISC_PREDICATEHINT (then rendering
+  // goes ahead while it is unknown).
+  virtual void SetPredication(Predicate* pPredicate, BOOL PredicateValue) = 0;
+  virtual void GetPredication(Predicate** ppPredicate, BOOL* pPredicateValue) = 0;
 
   virtual void ClearState() = 0;
   virtual void Flush() = 0;
+  // DEVICE_CONTEXT_IMMEDIATE or _DEFERRED; no context flags (D3D11 defines none for 11.0).
+  virtual DEVICE_CONTEXT_TYPE GetType() = 0;
+  virtual UINT GetContextFlags() = 0;
+
+  // Immediate context only: runs the list's commands from the default state (a
+  // list inherits nothing); afterwards the context's state is what it was
+  // before (RestoreContextState TRUE) or the default (FALSE, as ClearState).
+  virtual void ExecuteCommandList(CommandList* pCommandList, BOOL RestoreContextState) = 0;
+  // Deferred contexts only (DXGI_ERROR_INVALID_CALL on the immediate one): the
+  // commands recorded since the last call; the deferred context keeps its state
+  // for what it records next (RestoreDeferredContextState TRUE) or returns to
+  // the default state (FALSE).
+  virtual HRESULT FinishCommandList(BOOL RestoreDeferredContextState, CommandList** ppCommandList) = 0;
 
   // ID3DUserDefinedAnnotation: named regions and markers for debuggers and traces
   // (rhi/trace.h). The Vulkan context emits debug-utils labels when
@@ -349,6 +416,8 @@ class Device : public Unknown {
   virtual HRESULT CreateSamplerState(const SAMPLER_DESC* pSamplerDesc, SamplerState** ppSamplerState) = 0;
 
   virtual HRESULT CreateQuery(const QUERY_DESC* pQueryDesc, Query** ppQuery) = 0;
+  // QUERY_OCCLUSION_PREDICATE or QUERY_SO_OVERFLOW_PREDICATE[_STREAMn].
+  virtual HRESULT CreatePredicate(const QUERY_DESC* pPredicateDesc, Predicate** ppPredicate) = 0;
 
   // *pNumQualityLevels: 1 when a render target (or depth-stencil, for depth
   // formats) of Format may have SampleCount samples, else 0 (D3D11's answer for
@@ -357,6 +426,50 @@ class Device : public Unknown {
   virtual HRESULT CheckMultisampleQualityLevels(DXGI_FORMAT Format, UINT SampleCount, UINT* pNumQualityLevels) = 0;
 
   virtual void GetImmediateContext(DeviceContext** ppImmediateContext) = 0;
+  // A context that records into command lists, usable on another thread
+  // (deferred_context.cpp). ContextFlags must be 0.
+  virtual HRESULT CreateDeferredContext(UINT ContextFlags, DeviceContext** ppDeferredContext) = 0;
+
+  // Queries of the device (device_queries.cpp).
+  // Feature level 11_0, on every Vulkan 1.3 device the backend accepts.
+  virtual D3D_FEATURE_LEVEL GetFeatureLevel() = 0;
+  // CREATE_DEVICE_DEBUG when DEVICE_OPTIONS::EnableValidation (the debug layer's counterpart) is on.
+  virtual UINT GetCreationFlags() = 0;
+  // S_OK, or DXGI_ERROR_DEVICE_REMOVED once Vulkan reported VK_ERROR_DEVICE_LOST
+  // (waits then return instead of hanging).
+  virtual HRESULT GetDeviceRemovedReason() = 0;
+  // RaiseFlags: 0 or RAISE_FLAG_DRIVER_INTERNAL_ERROR, kept and returned; no
+  // exception is ever raised (device loss goes through GetDeviceRemovedReason).
+  virtual HRESULT SetExceptionMode(UINT RaiseFlags) = 0;
+  virtual UINT GetExceptionMode() = 0;
+  // FORMAT_SUPPORT_* bits D3D11 defines for Format that this device has; E_FAIL
+  // (and 0) for a format it cannot use at all.
+  virtual HRESULT CheckFormatSupport(DXGI_FORMAT Format, UINT* pFormatSupport) = 0;
+  // FEATURE_THREADING, _DOUBLES, _FORMAT_SUPPORT, _FORMAT_SUPPORT2 and
+  // _D3D10_X_HARDWARE_OPTIONS; E_INVALIDARG for another feature or a size that
+  // is not its struct's.
+  virtual HRESULT CheckFeatureSupport(FEATURE Feature, void* pFeatureSupportData, UINT FeatureSupportDataSize) = 0;
+
+  // What Vulkan cannot provide: these exist and refuse (device_queries.cpp).
+  // Dynamic shader linkage has no SPIR-V counterpart: E_NOTIMPL.
+  virtual HRESULT CreateClassLinkage(ClassLinkage** ppLinkage) = 0;
+  // No device-dependent counters: CheckCounterInfo reports none, CreateCounter
+  // returns DXGI_ERROR_UNSUPPORTED and CheckCounter E_INVALIDARG, as D3D11 does
+  // for a counter the device lacks.
+  virtual void CheckCounterInfo(COUNTER_INFO* pCounterInfo) = 0;
+  virtual HRESULT CreateCounter(const COUNTER_DESC* pCounterDesc, Counter** ppCounter) = 0;
+  virtual HRESULT CheckCounter(const COUNTER_DESC* pDesc, COUNTER_TYPE* pType, UINT* pActiveCounters, LPSTR szName,
+                               UINT* pNameLength, LPSTR szUnits, UINT* pUnitsLength, LPSTR szDescription,
+                               UINT* pDescriptionLength) = 0;
+  // No resource is shared across processes (RESOURCE_MISC_SHARED is not
+  // accepted), so no handle names one: E_INVALIDARG, as for a bad handle.
+  virtual HRESULT OpenSharedResource(HANDLE hResource, REFIID ReturnedInterface, void** ppResource) = 0;
+
+  // Private data (D3D11's semantics and HRESULTs). WKPDID_D3DDebugObjectName
+  // also names the VkDevice (VK_EXT_debug_utils, with the validation layer).
+  virtual HRESULT GetPrivateData(REFGUID guid, UINT* pDataSize, void* pData) = 0;
+  virtual HRESULT SetPrivateData(REFGUID guid, UINT DataSize, const void* pData) = 0;
+  virtual HRESULT SetPrivateDataInterface(REFGUID guid, const Unknown* pData) = 0;
 
   // Not in D3D11: the Vulkan physical device's name ("llvmpipe (LLVM 15.0.6, 256 bits)").
   virtual const char* GetAdapterName() = 0;

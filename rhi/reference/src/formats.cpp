@@ -40,6 +40,16 @@ constexpr FormatInfo kFormats[] = {
     {DXGI_FORMAT_R32_FLOAT, {K::Float32, K::Absent, K::Absent, K::Absent}, {}, {0, -1, -1, -1}, 4},
     {DXGI_FORMAT_R32_UINT, {K::Uint, K::Absent, K::Absent, K::Absent}, {}, {0, -1, -1, -1}, 4},
     {DXGI_FORMAT_R32G32B32A32_UINT, {K::Uint, K::Uint, K::Uint, K::Uint}, {}, {0, 1, 2, 3}, 4},
+    // The other render-target formats whose conversions are the rules above (UNORM of any
+    // width, sRGB 8-bit, float32, 32-bit UINT), so that fxtool can read them back.
+    {DXGI_FORMAT_R16G16B16A16_UNORM, {K::Unorm, K::Unorm, K::Unorm, K::Unorm}, {16, 16, 16, 16}, {0, 1, 2, 3}, 2},
+    {DXGI_FORMAT_R32G32_FLOAT, {K::Float32, K::Float32, K::Absent, K::Absent}, {}, {0, 1, -1, -1}, 4},
+    {DXGI_FORMAT_R32G32_UINT, {K::Uint, K::Uint, K::Absent, K::Absent}, {}, {0, 1, -1, -1}, 4},
+    {DXGI_FORMAT_R16G16_UNORM, {K::Unorm, K::Unorm, K::Absent, K::Absent}, {16, 16, 0, 0}, {0, 1, -1, -1}, 2},
+    {DXGI_FORMAT_R8G8_UNORM, {K::Unorm, K::Unorm, K::Absent, K::Absent}, {8, 8, 0, 0}, {0, 1, -1, -1}, 1},
+    {DXGI_FORMAT_R16_UNORM, {K::Unorm, K::Absent, K::Absent, K::Absent}, {16, 0, 0, 0}, {0, -1, -1, -1}, 2},
+    {DXGI_FORMAT_B8G8R8A8_UNORM_SRGB, {K::Srgb, K::Srgb, K::Srgb, K::Unorm}, {8, 8, 8, 8}, {2, 1, 0, 3}, 1},
+    {DXGI_FORMAT_B8G8R8X8_UNORM_SRGB, {K::Srgb, K::Srgb, K::Srgb, K::Absent}, {8, 8, 8, 0}, {2, 1, 0, 3}, 1},
 };
 
 const FormatInfo* Find(DXGI_FORMAT format) {

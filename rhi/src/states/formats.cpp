@@ -35,6 +35,14 @@ constexpr FormatInfo Make(DXGI_FORMAT format, const char* name, VkFormat vk, uin
                     swizzle};
 }
 
+constexpr FormatInfo MakeBlockCompressed(DXGI_FORMAT format, const char* name, VkFormat vk, uint8_t blockBytes,
+                                         uint8_t components, ComponentKind kind, DXGI_FORMAT family,
+                                         uint8_t traits = kNone) {
+  FormatInfo info = Make(format, name, vk, blockBytes, components, kind, SR, family, traits);
+  info.blockSize = 4;
+  return info;
+}
+
 #define F(fmt) DXGI_FORMAT_##fmt, "DXGI_FORMAT_" #fmt
 #define VK(fmt) VK_FORMAT_##fmt
 #define FAM(fmt) DXGI_FORMAT_##fmt
@@ -112,6 +120,23 @@ constexpr FormatInfo kFormats[] = {
     Make(F(R8_SNORM), VK(R8_SNORM), 1, 1, K::Snorm, kVertexColor, FAM(R8_TYPELESS)),
     Make(F(R8_SINT), VK(R8_SINT), 1, 1, K::Sint, kVertexColor, FAM(R8_TYPELESS)),
     Make(F(A8_UNORM), VK(R8_UNORM), 1, 1, K::Unorm, SR | RT, FAM(UNKNOWN), kAlpha, ViewSwizzle::AlphaFromRed),
+    // Block-compressed formats: shader resources only (no render target, UAV or
+    // buffer use in D3D11); each family has a typeless member for typed views.
+    MakeBlockCompressed(F(BC1_TYPELESS), VK(BC1_RGBA_UNORM_BLOCK), 8, 4, K::Typeless, FAM(BC1_TYPELESS), kAlpha),
+    MakeBlockCompressed(F(BC1_UNORM), VK(BC1_RGBA_UNORM_BLOCK), 8, 4, K::Unorm, FAM(BC1_TYPELESS), kAlpha),
+    MakeBlockCompressed(F(BC1_UNORM_SRGB), VK(BC1_RGBA_SRGB_BLOCK), 8, 4, K::Unorm, FAM(BC1_TYPELESS), kAlpha | kSrgb),
+    MakeBlockCompressed(F(BC2_TYPELESS), VK(BC2_UNORM_BLOCK), 16, 4, K::Typeless, FAM(BC2_TYPELESS), kAlpha),
+    MakeBlockCompressed(F(BC2_UNORM), VK(BC2_UNORM_BLOCK), 16, 4, K::Unorm, FAM(BC2_TYPELESS), kAlpha),
+    MakeBlockCompressed(F(BC2_UNORM_SRGB), VK(BC2_SRGB_BLOCK), 16, 4, K::Unorm, FAM(BC2_TYPELESS), kAlpha | kSrgb),
+    MakeBlockCompressed(F(BC3_TYPELESS), VK(BC3_UNORM_BLOCK), 16, 4, K::Typeless, FAM(BC3_TYPELESS), kAlpha),
+    MakeBlockCompressed(F(BC3_UNORM), VK(BC3_UNORM_BLOCK), 16, 4, K::Unorm, FAM(BC3_TYPELESS), kAlpha),
+    MakeBlockCompressed(F(BC3_UNORM_SRGB), VK(BC3_SRGB_BLOCK), 16, 4, K::Unorm, FAM(BC3_TYPELESS), kAlpha | kSrgb),
+    MakeBlockCompressed(F(BC4_TYPELESS), VK(BC4_UNORM_BLOCK), 8, 1, K::Typeless, FAM(BC4_TYPELESS)),
+    MakeBlockCompressed(F(BC4_UNORM), VK(BC4_UNORM_BLOCK), 8, 1, K::Unorm, FAM(BC4_TYPELESS)),
+    MakeBlockCompressed(F(BC4_SNORM), VK(BC4_SNORM_BLOCK), 8, 1, K::Snorm, FAM(BC4_TYPELESS)),
+    MakeBlockCompressed(F(BC5_TYPELESS), VK(BC5_UNORM_BLOCK), 16, 2, K::Typeless, FAM(BC5_TYPELESS)),
+    MakeBlockCompressed(F(BC5_UNORM), VK(BC5_UNORM_BLOCK), 16, 2, K::Unorm, FAM(BC5_TYPELESS)),
+    MakeBlockCompressed(F(BC5_SNORM), VK(BC5_SNORM_BLOCK), 16, 2, K::Snorm, FAM(BC5_TYPELESS)),
     // BGRA (DXGI 1.1). X8 formats live in B8G8R8A8 images with the alpha hidden.
     Make(F(B8G8R8A8_UNORM), VK(B8G8R8A8_UNORM), 4, 4, K::Unorm, VB | SR | RT, FAM(B8G8R8A8_TYPELESS), kAlpha),
     Make(F(B8G8R8X8_UNORM), VK(B8G8R8A8_UNORM), 4, 3, K::Unorm, SR | RT, FAM(B8G8R8X8_TYPELESS), kAlphaOne,
@@ -122,13 +147,21 @@ constexpr FormatInfo kFormats[] = {
          ViewSwizzle::AlphaOne),
     Make(F(B8G8R8X8_UNORM_SRGB), VK(B8G8R8A8_SRGB), 4, 3, K::Unorm, SR | RT, FAM(B8G8R8X8_TYPELESS), kAlphaOne | kSrgb,
          ViewSwizzle::AlphaOne),
+
+    // BC6H and BC7 (D3D11): numbered after the BGRA formats.
+    MakeBlockCompressed(F(BC6H_TYPELESS), VK(BC6H_UFLOAT_BLOCK), 16, 3, K::Typeless, FAM(BC6H_TYPELESS)),
+    MakeBlockCompressed(F(BC6H_UF16), VK(BC6H_UFLOAT_BLOCK), 16, 3, K::Float, FAM(BC6H_TYPELESS)),
+    MakeBlockCompressed(F(BC6H_SF16), VK(BC6H_SFLOAT_BLOCK), 16, 3, K::Float, FAM(BC6H_TYPELESS)),
+    MakeBlockCompressed(F(BC7_TYPELESS), VK(BC7_UNORM_BLOCK), 16, 4, K::Typeless, FAM(BC7_TYPELESS), kAlpha),
+    MakeBlockCompressed(F(BC7_UNORM), VK(BC7_UNORM_BLOCK), 16, 4, K::Unorm, FAM(BC7_TYPELESS), kAlpha),
+    MakeBlockCompressed(F(BC7_UNORM_SRGB), VK(BC7_SRGB_BLOCK), 16, 4, K::Unorm, FAM(BC7_TYPELESS), kAlpha | kSrgb),
 };
 
 #undef F
 #undef VK
 #undef FAM
 
-constexpr UINT kMaxFormat = DXGI_FORMAT_B8G8R8X8_UNORM_SRGB;
+constexpr UINT kMaxFormat = DXGI_FORMAT_BC7_UNORM_SRGB;
 
 // Index by enum value, built once.
 const std::array<const FormatInfo*, kMaxFormat + 1>& Lookup() {

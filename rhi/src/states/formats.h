@@ -29,7 +29,7 @@ struct FormatInfo {
   // VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT); formats of the R24G8 family get the
   // preferred depth format (see PickDepthFormat for the fallback).
   VkFormat vkFormat;
-  uint8_t bytesPerElement;  // bytes per texel / vertex element
+  uint8_t bytesPerElement;  // bytes per texel / vertex element; per 4x4 block of a block-compressed format
   uint8_t componentCount;   // X channels are not counted (B8G8R8X8 has 3)
   ComponentKind kind;
   bool hasAlpha;            // the D3D format has a real alpha channel
@@ -52,7 +52,17 @@ struct FormatInfo {
   // A8_UNORM).
   DXGI_FORMAT family;
   ViewSwizzle swizzle;
+  // 4 for the block-compressed formats (BC1-BC7: 4x4 texel blocks), 1 otherwise.
+  uint8_t blockSize = 1;
 };
+
+// Bytes of one row of blocks (of texels when not block-compressed) of a level
+// `width` texels wide, and the number of such rows in `height` texels: sizes round
+// up to whole blocks, as D3D11 lays out block-compressed memory.
+inline UINT RowPitchBytes(const FormatInfo& f, UINT width) {
+  return (width + f.blockSize - 1) / f.blockSize * f.bytesPerElement;
+}
+inline UINT RowCount(const FormatInfo& f, UINT height) { return (height + f.blockSize - 1) / f.blockSize; }
 
 // nullptr for DXGI_FORMAT_UNKNOWN and any value not in d3d11_types.h.
 const FormatInfo* GetFormatInfo(DXGI_FORMAT format);

@@ -18,6 +18,7 @@
 // fail with E_FAIL and return invalid objects.
 #pragma once
 
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <utility>
@@ -372,10 +373,33 @@ class Effect : public rhi::Unknown {
 };
 
 // D3DX11CreateEffectFromFile / D3DX11CreateEffectFromMemory. On failure *ppEffect
-// is null and options.Errors (when set) holds the errors.
+// is null and options.Errors (when set) holds the errors. The file name may be UTF-8
+// (char), wide (wchar_t, as D3D11 programs pass it; converted to UTF-8 whatever the
+// locale) or a std::filesystem::path.
 HRESULT CreateEffectFromFile(const char* pFileName, const EFFECT_OPTIONS& options, rhi::Device* pDevice,
                              Effect** ppEffect);
+HRESULT CreateEffectFromFile(const wchar_t* pFileName, const EFFECT_OPTIONS& options, rhi::Device* pDevice,
+                             Effect** ppEffect);
+HRESULT CreateEffectFromFile(const std::filesystem::path& fileName, const EFFECT_OPTIONS& options,
+                             rhi::Device* pDevice, Effect** ppEffect);
 HRESULT CreateEffectFromMemory(const void* pData, SIZE_T DataLength, const char* pVirtualFileName,
                                const EFFECT_OPTIONS& options, rhi::Device* pDevice, Effect** ppEffect);
+
+// FX11's effect flags (D3DCOMPILE_EFFECT_*), the FXFlags of D3DX11CreateEffectFromMemory.
+inline constexpr UINT COMPILE_EFFECT_CHILD_EFFECT = 1u << 0;    // effect pools: E_NOTIMPL, as FX11
+inline constexpr UINT COMPILE_EFFECT_ALLOW_SLOW_OPS = 1u << 1;  // accepted; nothing is slow here
+
+// D3DX11CreateEffectFromMemory(pData, DataLength, FXFlags, pDevice, ppEffect, srcName) in
+// the form a port needs, so that a call ports with a rename: pData is the effect's source
+// text (what the program read from its .fx file; there is no fxc bytecode), pSourceName
+// names it in messages ("particles.fx:12:5: error: ...") and anchors relative #includes
+// (may be null: "<memory>"), includeFolder is searched for #include after that (may be
+// empty). FXFlags: COMPILE_EFFECT_* (child effects give E_NOTIMPL, unknown bits
+// E_INVALIDARG). Errors, one "file:line:column: error: message" a line, go to *pErrors
+// when given, else to stderr (where D3D11's debug output would show them). The SPIR-V
+// cache is the default one (EFFECT_OPTIONS::CacheDirectory).
+HRESULT CreateEffectFromMemory(const void* pData, SIZE_T DataLength, const char* pSourceName,
+                               const std::filesystem::path& includeFolder, UINT FXFlags, rhi::Device* pDevice,
+                               Effect** ppEffect, std::string* pErrors = nullptr);
 
 }  // namespace fx

@@ -27,10 +27,11 @@ struct StoredColor {
 
 enum class ChannelKind : uint8_t { Absent, Unorm, Srgb, Float16, Float32, Uint };
 
-// R8G8B8A8_UNORM(_SRGB), B8G8R8A8_UNORM, B8G8R8X8_UNORM, R10G10B10A2_UNORM,
-// R16G16B16A16_FLOAT, R32G32B32A32_FLOAT, R16G16_FLOAT, R8_UNORM, R16_FLOAT,
-// R32_FLOAT, R32_UINT, R32G32B32A32_UINT. Everything else is rejected (the
-// functions below throw std::invalid_argument).
+// R8G8B8A8_UNORM(_SRGB), B8G8R8A8_UNORM(_SRGB), B8G8R8X8_UNORM(_SRGB), R10G10B10A2_UNORM,
+// R16G16B16A16_FLOAT/UNORM, R32G32B32A32_FLOAT, R32G32_FLOAT/UINT, R16G16_FLOAT/UNORM,
+// R8G8_UNORM, R8_UNORM, R16_FLOAT/UNORM, R32_FLOAT, R32_UINT, R32G32B32A32_UINT.
+// Everything else (SNORM, SINT, 8/16-bit UINT, R11G11B10_FLOAT, A8_UNORM) is rejected
+// (the functions below throw std::invalid_argument).
 bool IsReferenceFormat(DXGI_FORMAT format);
 ChannelKind KindOf(DXGI_FORMAT format, int channel);
 int UnormBits(DXGI_FORMAT format, int channel);  // 0 unless UNORM or sRGB

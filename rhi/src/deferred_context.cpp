@@ -10,6 +10,7 @@
 
 #include "context.h"
 #include "rhi/format_info.h"
+#include "rhi/stage_methods.h"
 
 namespace rhi::vk {
 
@@ -60,26 +61,7 @@ std::vector<T*> RawSlots(const std::array<ComPtr<T>, N>& slots) {
   return raw;
 }
 
-// A stage's binding methods, to capture and apply all six stages alike.
-struct StageMethods {
-  void (DeviceContext::*setConstantBuffers)(UINT, UINT, Buffer* const*);
-  void (DeviceContext::*getConstantBuffers)(UINT, UINT, Buffer**);
-  void (DeviceContext::*setShaderResources)(UINT, UINT, ShaderResourceView* const*);
-  void (DeviceContext::*getShaderResources)(UINT, UINT, ShaderResourceView**);
-  void (DeviceContext::*setSamplers)(UINT, UINT, SamplerState* const*);
-  void (DeviceContext::*getSamplers)(UINT, UINT, SamplerState**);
-};
-#define RHI_STAGE_METHODS(Prefix)                                                                          \
-  StageMethods {                                                                                           \
-    &DeviceContext::Prefix##SetConstantBuffers, &DeviceContext::Prefix##GetConstantBuffers,               \
-        &DeviceContext::Prefix##SetShaderResources, &DeviceContext::Prefix##GetShaderResources,           \
-        &DeviceContext::Prefix##SetSamplers, &DeviceContext::Prefix##GetSamplers                          \
-  }
-// In ShaderStage order: VS, HS, DS, GS, PS, CS.
-const StageMethods kStageMethods[kShaderStageCount] = {RHI_STAGE_METHODS(VS), RHI_STAGE_METHODS(HS),
-                                                       RHI_STAGE_METHODS(DS), RHI_STAGE_METHODS(GS),
-                                                       RHI_STAGE_METHODS(PS), RHI_STAGE_METHODS(CS)};
-#undef RHI_STAGE_METHODS
+static_assert(std::size(kStageMethods) == kShaderStageCount, "rhi/stage_methods.h lists every stage");
 
 template <class T, size_t N>
 void CaptureSlots(DeviceContext* c, void (DeviceContext::*get)(UINT, UINT, T**), std::array<ComPtr<T>, N>& slots) {

@@ -2,6 +2,7 @@
 // (D3D11's getters AddRef), and imgui_impl_dx11's save / change / restore of
 // the whole pipeline state leaves the state, and what a draw produces, as before.
 #include "gpu_helpers.h"
+#include "rhi/stage_methods.h"
 
 namespace rhi_test {
 namespace {
@@ -14,26 +15,8 @@ UINT References(Unknown* object) {
   return object->Release();
 }
 
-// A shader stage's binding methods, so one test covers all six stages.
-struct StageApi {
-  const char* name;
-  void (DeviceContext::*setConstantBuffers)(UINT, UINT, Buffer* const*);
-  void (DeviceContext::*getConstantBuffers)(UINT, UINT, Buffer**);
-  void (DeviceContext::*setShaderResources)(UINT, UINT, ShaderResourceView* const*);
-  void (DeviceContext::*getShaderResources)(UINT, UINT, ShaderResourceView**);
-  void (DeviceContext::*setSamplers)(UINT, UINT, SamplerState* const*);
-  void (DeviceContext::*getSamplers)(UINT, UINT, SamplerState**);
-};
-
-#define RHI_STAGE_API(Prefix)                                                                              \
-  StageApi {                                                                                               \
-    #Prefix, &DeviceContext::Prefix##SetConstantBuffers, &DeviceContext::Prefix##GetConstantBuffers,       \
-        &DeviceContext::Prefix##SetShaderResources, &DeviceContext::Prefix##GetShaderResources,            \
-        &DeviceContext::Prefix##SetSamplers, &DeviceContext::Prefix##GetSamplers                           \
-  }
-const StageApi kStages[] = {RHI_STAGE_API(VS), RHI_STAGE_API(HS), RHI_STAGE_API(DS),
-                            RHI_STAGE_API(GS), RHI_STAGE_API(PS), RHI_STAGE_API(CS)};
-#undef RHI_STAGE_API
+// One test covers all six stages through rhi/stage_methods.h.
+using StageApi = rhi::StageMethods;
 
 class ContextGettersTest : public RhiGpuTest {
  protected:
@@ -93,7 +76,7 @@ TEST_P(StageGettersTest, StageBindingsRoundTripWithAReferenceEach) {
   EXPECT_EQ(gotCbs[0], nullptr) << "ClearState empties the slot";
 }
 
-INSTANTIATE_TEST_SUITE_P(AllStages, StageGettersTest, ::testing::ValuesIn(kStages),
+INSTANTIATE_TEST_SUITE_P(AllStages, StageGettersTest, ::testing::ValuesIn(rhi::kStageMethods),
                          [](const auto& info) { return std::string(info.param.name); });
 
 TEST_F(ContextGettersTest, ShaderGettersReturnTheBoundShaderOfEachStageAndNoClassInstances) {

@@ -38,7 +38,8 @@
 //       (RenderFrame's recording and submission, median), wall ms; WBOIT/alpha ratio.
 //       demo:  the smoke and shards demos at --size (default 640x360);
 //       paper: 1280x720, smoke of a few thousand particles over the opaque scene (Fig. 2);
-//       heavy: 1920x1080, 1M particles plus 10k instanced shards in one frame;
+//       heavy: 1920x1080, 1M particles plus 10k instanced shards in one frame, then the
+//       same particles alone (the scene the compute-tile methods draw);
 //       complexity: the complexity scene at depth complexity 1, 4, 16, 32, 64 at --size.
 //       A method that refuses a scene is skipped with its reason; a method of more than two
 //       passes also gets a line of its passes' GPU ms by name.
@@ -514,6 +515,9 @@ std::vector<BenchCase> BenchCases(const Options& o) {
     s.particleSize = 0.05f;
     s.extraShards = 10000;
     cases.push_back({"heavy", s});
+    // The same particles alone: the scene the compute-tile methods draw (particles only).
+    s.extraShards = 0;
+    cases.push_back({"heavy smoke", s});
   } else if (o.scene == "complexity") {
     // Document 004's sweep: the same quads at depth complexity 1 to 64, at --size.
     for (uint32_t complexity : {1u, 4u, 16u, 32u, 64u}) {

@@ -71,21 +71,24 @@ BillboardFrame FrameOf(Center c) {
   return f;
 }
 
+// Vertex `corner` of the billboard: GSBillboard's triangle strip, (-1,-1), (-1,1), (1,-1), (1,1).
+Billboard BillboardCorner(Center c, BillboardFrame f, uint corner, uint particle) {
+  float2 xy = float2(corner & 2 ? 1 : -1, corner & 1 ? 1 : -1);
+  float3 world = c.center + (xy.x * f.x + xy.y * f.y) * f.size;
+  Billboard b;
+  b.position = mul(ViewProj, float4(world, 1));
+  b.uv = float2(xy.x, -xy.y) * 0.5 + 0.5;
+  b.age = c.age;
+  b.light = f.light;
+  b.particle = particle;
+  return b;
+}
+
 [maxvertexcount(4)]
 void GSBillboard(point Center input[1], uint particle : SV_PrimitiveID, inout TriangleStream<Billboard> stream) {
   if (input[0].kind == 0) return;  // emitters are invisible
   BillboardFrame f = FrameOf(input[0]);
-  float2 corners[4] = {float2(-1, -1), float2(-1, 1), float2(1, -1), float2(1, 1)};
-  for (uint i = 0; i < 4; ++i) {
-    Billboard b;
-    float3 world = input[0].center + (corners[i].x * f.x + corners[i].y * f.y) * f.size;
-    b.position = mul(ViewProj, float4(world, 1));
-    b.uv = float2(corners[i].x, -corners[i].y) * 0.5 + 0.5;
-    b.age = input[0].age;
-    b.light = f.light;
-    b.particle = particle;
-    stream.Append(b);
-  }
+  for (uint i = 0; i < 4; ++i) stream.Append(BillboardCorner(input[0], f, i, particle));
 }
 
 // Colour, alpha and transmission of a fragment. Smoke: hot and bright when young,
@@ -127,14 +130,26 @@ uint TriangleId(Billboard b, uint primitiveId) { return b.particle; }
 // plane avoids the depth's precision, which 1/255 of the puff's shading needs). SampleLevel 0, not
 // Sample: a resolve's neighbouring pixels shade other particles, so derivatives mean
 // nothing there; the puff has one mip level, where both read the same texels.
-void ShadeTriangle(uint id, float4 position, out float3 c, out float a, out float3 t) {
+// The particle of index `id` in the buffer the frame draws.
+Center LoadCenter(uint id) {
   uint base = id * 40;
   Particle p;
   p.origin = asfloat(Particles.Load3(base));
   p.velocity = asfloat(Particles.Load3(base + 12));
   p.seedAge = Particles.Load2(base + 24);
   p.kindLife = Particles.Load2(base + 32);
-  Center center = VSSmoke(p);
+  return VSSmoke(p);
+}
+
+// Shade without derivatives, for passes where neighbouring pixels shade other
+// particles (a resolve, a compute tile): SampleLevel 0, not Sample; the puff has one
+// mip level, where both read the same texels.
+void ShadeAt(Billboard b, out float3 c, out float a, out float3 t) {
+  ShadePuff(Puff.SampleLevel(Linear, b.uv, 0), b, c, a, t);
+}
+
+void ShadeTriangle(uint id, float4 position, out float3 c, out float a, out float3 t) {
+  Center center = LoadCenter(id);
   BillboardFrame f = FrameOf(center);
   float3 ray = UnprojectPixel(position) - Eye;
   float3 world = Eye + ray * (dot(center.center - Eye, f.z) / dot(ray, f.z));
@@ -145,11 +160,30 @@ void ShadeTriangle(uint id, float4 position, out float3 c, out float a, out floa
   b.age = center.age;
   b.light = f.light;
   b.particle = id;
-  ShadePuff(Puff.SampleLevel(Linear, b.uv, 0), b, c, a, t);
+  ShadeAt(b, c, a, t);
+}
+
+// Quads (oit/common.fxh), for the compute-tile methods: the strip GSBillboard emits
+// for particle `id`, and its view depth (the centre's w: the sorted order's key).
+bool QuadOf(uint id, out Billboard v[4], out float viewDepth) {
+  Center c = LoadCenter(id);
+  BillboardFrame f = FrameOf(c);
+  for (uint i = 0; i < 4; ++i) v[i] = BillboardCorner(c, f, i, id);
+  viewDepth = mul(ViewProj, float4(c.center, 1)).w;
+  return c.kind != 0;
+}
+
+// The rasterizer's interpolation: uv with the perspective-correct weights `w` of
+// the triangle a, b, c; the flat attributes (age, light, particle) from a.
+Billboard InterpolateQuad(Billboard a, Billboard b, Billboard c, float3 w) {
+  Billboard p = a;
+  p.uv = w.x * a.uv + w.y * b.uv + w.z * c.uv;
+  return p;
 }
 
 #define OBJECT_VS VSSmoke
 #define OBJECT_DEFERRED 1
+#define OBJECT_QUADS 1
 #define OBJECT_GS CompileShader(gs_5_0, GSBillboard())
 #define OBJECT_PIXEL Billboard
 
@@ -166,6 +200,7 @@ BlendState Additive {
 };
 #define OVER_TECHNIQUE Fire
 #define OVER_BLEND Additive
+#define OBJECT_ADDITIVE 1  // the compute-tile methods' OVER: Additive's arithmetic
 #endif
 
 // Loaded on its own, as any FX file, the object is drawn with plain alpha blending.

@@ -58,6 +58,7 @@ struct Translucency::Impl {
   ComPtr<RenderTargetView> frameRtv;
   ComPtr<ShaderResourceView> frameSrv;
   ComPtr<DepthStencilView> dsv;
+  ComPtr<ShaderResourceView> depthSrv;  // the opaque depth, R32_FLOAT
   // The scene's translucent objects and the methods made for them, by name.
   std::vector<std::unique_ptr<TranslucentObject>> objects;
   std::map<std::string, MethodState> methods;
@@ -121,6 +122,18 @@ class Translucency::FrameGeometry final : public oit::Geometry {
   }
   void SetEffectVariables(const std::function<void(fx::Effect&)>& set) override {
     for (auto& object : impl_.objects) set(*object->MethodEffect(method_));
+  }
+  // Then unbinds the compute shader's resources and UAVs: the method's buffers are
+  // read, written or copied by its next passes.
+  void Dispatch(DeviceContext* context, const char* pass, uint32_t x, uint32_t y, uint32_t z) override {
+    for (auto& object : impl_.objects) {
+      std::string why;
+      if (!object->Dispatch(context, method_, camera_, frame_, pass, x, y, z, &why)) Fail(*object, why);
+    }
+    ShaderResourceView* none[COMMONSHADER_INPUT_RESOURCE_SLOT_COUNT] = {};
+    context->CSSetShaderResources(0, COMMONSHADER_INPUT_RESOURCE_SLOT_COUNT, none);
+    UnorderedAccessView* noUavs[PS_CS_UAV_REGISTER_COUNT] = {};
+    context->CSSetUnorderedAccessViews(0, PS_CS_UAV_REGISTER_COUNT, noUavs, nullptr);
   }
   std::string error;
 
@@ -212,11 +225,18 @@ bool Translucency::Initialize(Device* device, DeviceContext* context, const Tran
     TEXTURE2D_DESC d{s.width, s.height, 1, 1, format, {1, 0}, USAGE_DEFAULT, bind, 0, 0};
     return SUCCEEDED(device->CreateTexture2D(&d, nullptr, out->GetAddressOf()));
   };
+  // The depth is typeless so that a method can read it (R32_FLOAT) as well as test it (D32_FLOAT).
+  DEPTH_STENCIL_VIEW_DESC dsvDesc{DXGI_FORMAT_D32_FLOAT, DSV_DIMENSION_TEXTURE2D, 0, {}};
+  SHADER_RESOURCE_VIEW_DESC depthSrvDesc{};
+  depthSrvDesc.Format = DXGI_FORMAT_R32_FLOAT;
+  depthSrvDesc.ViewDimension = SRV_DIMENSION_TEXTURE2D;
+  depthSrvDesc.Texture2D = {0, 1};
   if (!texture(DXGI_FORMAT_R8G8B8A8_UNORM, BIND_RENDER_TARGET | BIND_SHADER_RESOURCE, &m.frame) ||
-      !texture(DXGI_FORMAT_D32_FLOAT, BIND_DEPTH_STENCIL, &m.depth) ||
+      !texture(DXGI_FORMAT_R32_TYPELESS, BIND_DEPTH_STENCIL | BIND_SHADER_RESOURCE, &m.depth) ||
       FAILED(device->CreateRenderTargetView(m.frame.Get(), nullptr, m.frameRtv.GetAddressOf())) ||
       FAILED(device->CreateShaderResourceView(m.frame.Get(), nullptr, m.frameSrv.GetAddressOf())) ||
-      FAILED(device->CreateDepthStencilView(m.depth.Get(), nullptr, m.dsv.GetAddressOf())))
+      FAILED(device->CreateDepthStencilView(m.depth.Get(), &dsvDesc, m.dsv.GetAddressOf())) ||
+      FAILED(device->CreateShaderResourceView(m.depth.Get(), &depthSrvDesc, m.depthSrv.GetAddressOf())))
     return fail("creating the frame and the depth buffer");
 
   // The opaque backdrop of the scene: scene.fx, technique Opaque.
@@ -259,13 +279,17 @@ Translucency::MethodState* Translucency::Prepare(const oit::MethodInfo& info) {
   if (auto found = m.methods.find(info.name); found != m.methods.end()) return &found->second;
   MethodState state;
   std::string why;
-  const oit::MethodSetup setup{m.device,
+  if (!Accepts(info, &why)) return error_ = why, nullptr;
+  uint32_t quadCapacity = 0;
+  for (auto& object : m.objects) quadCapacity = std::max(quadCapacity, object->QuadCapacity());
+  oit::MethodSetup setup{m.device,
                                {settings_.width, settings_.height, 1},
                                settings_.peelLayers,
                                uint32_t(m.objects.size()),
                                settings_.fragmentStorage,
                                settings_.minDepthSlope,
                                settings_.msaaSamples};
+  setup.quadCapacity = quadCapacity;
   state.method = info.create(info, setup, &why);
   if (!state.method) return error_ = std::string(info.name) + ": " + why, nullptr;
   if (state.method->Opaque() == oit::OpaqueShading::VisibilityBuffer && !PrepareVisibilityBuffer()) return nullptr;
@@ -281,6 +305,18 @@ Translucency::MethodState* Translucency::Prepare(const oit::MethodInfo& info) {
       if (FAILED(m.device->CreateQuery(&stamp, q.GetAddressOf()))) return error_ = "the timestamp queries", nullptr;
   }
   return &m.methods.emplace(info.name, std::move(state)).first->second;
+}
+
+bool Translucency::Accepts(const oit::MethodInfo& method, std::string* why) const {
+  if (!(method.needs & oit::kNeedsQuadObjects)) return true;
+  for (const auto& object : impl_->objects)
+    if (object->QuadCapacity() == 0) {
+      if (why)
+        *why = std::string(method.name) + " bins and shades camera-facing quads (the particles) in compute; " +
+               object->Name() + " draws other primitives";
+      return false;
+    }
+  return true;
 }
 
 bool Translucency::PrepareVisibilityBuffer() {
@@ -361,7 +397,7 @@ bool Translucency::Render(const oit::MethodInfo& method, bool advance) {
   FrameOpaque opaque(m, camera_, {settings_.width, settings_.height, 1});
   FrameBackdrop backdrop(*this);
   state->method->Render({ctx,
-                         {m.frameRtv.Get(), m.dsv.Get(), m.frameSrv.Get()},
+                         {m.frameRtv.Get(), m.dsv.Get(), m.frameSrv.Get(), m.depthSrv.Get()},
                          &geometry,
                          &marks,
                          &backdrop,

@@ -29,6 +29,19 @@
 //                 (UnprojectPixel, oit/deferred.hlsli, which the object includes).
 // The deferred passes draw the object in submission order: the ids refer to its
 // buffers as drawn then.
+// Quads, which the compute-tile methods (compute_tiles.fxh) need: they bin and shade
+// the object's primitives in compute shaders, with no rasterizer. Such an object
+// (camera-facing billboards: the particles) defines OBJECT_QUADS 1 and provides
+//   bool QuadOf(uint id, out OBJECT_PIXEL v[4], out float viewDepth)
+//                 the four vertices (a triangle strip, SV_Position in clip space) its
+//                 geometry shader emits for primitive `id` of the buffer drawn, and the
+//                 view depth the sorted order uses; false when it emits none;
+//   OBJECT_PIXEL InterpolateQuad(OBJECT_PIXEL a, OBJECT_PIXEL b, OBJECT_PIXEL c, float3 w)
+//                 the rasterizer's interpolation of the triangle a, b, c's attributes
+//                 with the perspective-correct weights w (flat ones from a);
+//   void ShadeAt(OBJECT_PIXEL p, out float3 c, out float a, out float3 t)
+//                 Shade without derivatives (SampleLevel), for compute;
+// and OBJECT_ADDITIVE 1 where its OVER is additive (the fire).
 // A method's technique holds every pass of the method, as an FX11 technique
 // does; a method's own passes (those that draw no object, such as composing)
 // are also built from the same include without an object (oit/method.fx):

@@ -289,7 +289,7 @@ class GoldenTest : public GpuTest {
     std::string error;
     auto t = Translucency::Create(device.Get(), context.Get(), GoldenSettings(scene), &error);
     EXPECT_NE(t, nullptr) << error;
-    if (!t) return {};
+    if (!t || !t->Accepts(method)) return {};  // empty: the method does not draw the scene by design
     for (int i = 0; i < GoldenFrames(scene); ++i) EXPECT_TRUE(t->RenderFrame(method)) << t->error();
     return t->ReadFrame();
   }
@@ -318,6 +318,7 @@ TEST_F(GoldenTest, EveryDemoAndMethodMatchesItsGoldenImage) {
       const std::string name = std::string(scene->name) + "_" + method->name;
       SCOPED_TRACE(name);
       const std::vector<uint8_t> image = Render(*scene, *method);
+      if (image.empty() && !HasFailure()) continue;  // refused by design (Translucency::Accepts)
       ASSERT_EQ(image.size(), size_t(kWidth) * kHeight * 4);
       const double toSorted = renderer::Rmse(image, sorted);
       std::printf("%-24s RMSE to sorted %.3f\n", name.c_str(), toSorted);

@@ -30,7 +30,7 @@ class ReplayTest : public GpuTest {
     std::string error;
     auto t = Translucency::Create(device.Get(), context.Get(), s, &error);
     EXPECT_NE(t, nullptr) << error;
-    if (!t) return {};
+    if (!t || !t->Accepts(method)) return {};  // empty: the method does not draw the scene by design
     for (int i = 0; i < frames; ++i) EXPECT_TRUE(t->RenderFrame(method)) << t->error();
     if (count) *count = t->particleCount();
     return t->ReadFrame();
@@ -70,6 +70,8 @@ TEST_F(ReplayTest, TransparencyFragmentsAreTheSameForEveryMethod) {
   s.timestamps = true;
   std::vector<uint64_t> fragments[2];  // single-sampled, multisampled
   for (const MethodInfo* method : renderer::oit::Methods()) {
+    // The compute-tile methods rasterize no fragment of the particles: they shade them in compute.
+    if (method->needs & renderer::oit::kNeedsQuadObjects) continue;
     std::string error;
     auto t = Translucency::Create(device.Get(), context.Get(), s, &error);
     ASSERT_NE(t, nullptr) << error;
@@ -164,6 +166,7 @@ TEST_F(ReplayTest, TheSameFrameRenderedTwiceIsBitIdentical) {
       const TranslucencySettings s = Small(scene);
       const int frames = std::string(scene) == "smoke" ? 20 : 2;
       auto a = Render(s, *method, frames), b = Render(s, *method, frames);
+      if (a.empty() && !HasFailure()) continue;  // refused by design (Translucency::Accepts)
       ASSERT_FALSE(a.empty());
       EXPECT_TRUE(a == b) << scene << " " << method->name;
     }

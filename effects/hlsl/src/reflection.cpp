@@ -93,10 +93,32 @@ class SpirvLayout {
 
   bool HasBlock(int binding) const { return blocks_.count(binding) != 0; }
 
-  std::optional<uint32_t> Offset(int binding, const std::string& path) const {
-    const auto block = blocks_.find(binding);
-    if (block == blocks_.end()) return std::nullopt;
-    uint32_t type = block->second, offset = 0;
+  // The member `path` of the block at `binding`. Blocks a shader does not use keep
+  // the registers written in the source, so another block of the shader may sit at
+  // the same binding (an unused cbuffer : register(b2) beside one glslang put in
+  // b2): the one named `block` (its type's OpName) is meant, else the only one.
+  std::optional<uint32_t> Offset(int binding, const std::string& block, const std::string& path) const {
+    const auto [first, end] = blocks_.equal_range(binding);
+    for (auto it = first; it != end; ++it)
+      if (std::distance(first, end) == 1 || Get(names_, it->second) == block) return MemberOffset(it->second, path);
+    return std::nullopt;
+  }
+
+ private:
+  struct Member {
+    uint32_t type = 0, offset = 0;
+  };
+  static uint32_t Get(const std::unordered_map<uint32_t, uint32_t>& map, uint32_t key) {
+    const auto it = map.find(key);
+    return it == map.end() ? 0 : it->second;
+  }
+  static std::string Get(const std::unordered_map<uint32_t, std::string>& map, uint32_t key) {
+    const auto it = map.find(key);
+    return it == map.end() ? std::string() : it->second;
+  }
+
+  std::optional<uint32_t> MemberOffset(uint32_t type, const std::string& path) const {
+    uint32_t offset = 0;
     for (size_t i = 0; i < path.size();) {
       if (path[i] == '.') ++i;
       if (path[i] == '[') {  // array element: index * ArrayStride
@@ -118,23 +140,16 @@ class SpirvLayout {
     return offset;
   }
 
- private:
-  struct Member {
-    uint32_t type = 0, offset = 0;
-  };
-  static uint32_t Get(const std::unordered_map<uint32_t, uint32_t>& map, uint32_t key) {
-    const auto it = map.find(key);
-    return it == map.end() ? 0 : it->second;
-  }
   static std::string String(const uint32_t* words, size_t count) {
     const char* text = reinterpret_cast<const char*>(words);
     return std::string(text, strnlen(text, count * 4));
   }
 
   void Record(uint32_t op, const uint32_t* w, uint32_t count) {
-    constexpr uint32_t kMemberName = 6, kTypeArray = 28, kTypeStruct = 30, kTypePointer = 32, kVariable = 59,
+    constexpr uint32_t kName = 5, kMemberName = 6, kTypeArray = 28, kTypeStruct = 30, kTypePointer = 32, kVariable = 59,
                        kDecorate = 71, kMemberDecorate = 72;
     constexpr uint32_t kArrayStride = 6, kBinding = 33, kOffset = 35, kUniform = 2;
+    if (op == kName && count > 2) names_[w[1]] = String(w + 2, count - 2);
     if (op == kMemberName && count > 3) memberNames_[{w[1], w[2]}] = String(w + 3, count - 3);
     if (op == kMemberDecorate && count > 4 && w[3] == kOffset) offsets_[{w[1], w[2]}] = w[4];
     if (op == kDecorate && count > 3 && w[2] == kArrayStride) arrayStride_[w[1]] = w[3];
@@ -147,7 +162,7 @@ class SpirvLayout {
       }
     }
     if (op == kVariable && count > 3 && w[3] == kUniform && bindings_.count(w[2])) {
-      blocks_[static_cast<int>(bindings_[w[2]])] = Get(pointee_, w[1]);
+      blocks_.emplace(static_cast<int>(bindings_[w[2]]), Get(pointee_, w[1]));
     }
   }
 
@@ -156,7 +171,8 @@ class SpirvLayout {
   std::map<std::pair<uint32_t, uint32_t>, uint32_t> offsets_;
   std::map<std::pair<uint32_t, std::string>, Member> members_;
   std::unordered_map<uint32_t, uint32_t> arrayStride_, bindings_, arrayElement_, pointee_;
-  std::unordered_map<int, uint32_t> blocks_;  // binding -> block struct type
+  std::unordered_map<uint32_t, std::string> names_;
+  std::unordered_multimap<int, uint32_t> blocks_;  // binding -> block struct types
 };
 
 ConstantBufferMember ToMember(const glslang::TObjectReflection& u) {
@@ -263,7 +279,7 @@ ConstantBufferInfo ToConstantBuffer(const glslang::TObjectReflection& b, Stage s
 void AddMember(const glslang::TObjectReflection& u, const SpirvLayout& layout, ConstantBufferInfo& cb) {
   ConstantBufferMember member = ToMember(u);
   if (layout.HasBlock(static_cast<int>(cb.binding))) {
-    const std::optional<uint32_t> offset = layout.Offset(static_cast<int>(cb.binding), u.name);
+    const std::optional<uint32_t> offset = layout.Offset(static_cast<int>(cb.binding), cb.name, u.name);
     if (!offset) return;
     member.offset = *offset;
   }

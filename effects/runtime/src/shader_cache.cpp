@@ -14,8 +14,9 @@ namespace fx::detail {
 namespace {
 
 // Bump when the file format or anything the runtime does to the source before
-// compiling changes (e.g. the geometry-shader isolation).
-constexpr char kFormat[] = "fxrt-spirv-cache-2";
+// compiling or the reflection it stores changes (e.g. the geometry-shader isolation;
+// 3: the members of a cbuffer that shares its binding with an unused one).
+constexpr char kFormat[] = "fxrt-spirv-cache-3";
 #define FXRT_STR2(x) #x
 #define FXRT_STR(x) FXRT_STR2(x)
 constexpr char kCompilerVersion[] = "glslang " FXRT_STR(GLSLANG_VERSION_MAJOR) "." FXRT_STR(

@@ -96,6 +96,10 @@ class Translucency {
   // False when the method could not be made for this scene (error() says why);
   // the frame index does not advance then.
   bool RenderFrame(const oit::MethodInfo& method);
+  // Whether `method` draws this scene's objects by design (the compute-tile methods
+  // draw particles only); false with the reason in `why`. RenderFrame refuses the
+  // others with that reason.
+  bool Accepts(const oit::MethodInfo& method, std::string* why = nullptr) const;
   // Renders the last frame again with `method`: its camera and its objects as the last
   // RenderFrame left them (no update), so that several methods draw the very same
   // frame (the comparison, renderer/comparison.h). A back-to-front method needs that

@@ -41,8 +41,18 @@ class TranslucentObject {
   // for the method has no such pass.
   virtual bool DrawFullscreen(rhi::DeviceContext* context, const oit::MethodInfo& method, const Camera& camera,
                               const oit::FrameDesc& frame, const char* pass, std::string* error) = 0;
+  // Applies the compute pass `pass` of `method`'s technique, with what the object's
+  // shaders read bound (its buffers, the camera), and dispatches x * y * z groups;
+  // false (and `error`) when its effect for the method has no such pass.
+  virtual bool Dispatch(rhi::DeviceContext* context, const oit::MethodInfo& method, const Camera& camera,
+                        const oit::FrameDesc& frame, const char* pass, uint32_t x, uint32_t y, uint32_t z,
+                        std::string* error) = 0;
   // Primitives alive after the last counting Update; 0 for objects that do not change.
   virtual uint64_t LiveCount() const { return 0; }
+  // The most camera-facing quads a frame of the object can draw, where its
+  // primitives are such quads (OBJECT_QUADS, oit/common.fxh: the particles); 0 where
+  // they are not.
+  virtual uint32_t QuadCapacity() const { return 0; }
 };
 
 }  // namespace renderer

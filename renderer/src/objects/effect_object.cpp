@@ -18,18 +18,28 @@ bool EffectObject::PrepareMethod(const oit::MethodInfo& method, std::string* err
   e.viewProj = fx->GetVariableByName("ViewProj")->AsMatrix();
   e.eye = fx->GetVariableByName("Eye")->AsVector();
   if (!Configure(*fx, method, error)) return false;
-  if (!layout_) {
-    fx::PASS_DESC desc;
-    if (FAILED(fx->GetTechniqueByIndex(0)->GetPassByIndex(0)->GetDesc(&desc)) ||
-        FAILED(setup_.device->CreateInputLayout(layoutElements_.data(), UINT(layoutElements_.size()),
-                                                desc.pIAInputSignature, desc.IAInputSignatureSize,
-                                                layout_.GetAddressOf()))) {
-      *error = std::string(file_) + ": creating the input layout failed";
-      return false;
-    }
-  }
+  if (!layout_ && !CreateInputLayout(*fx, error)) return false;
   effects_.emplace(method.name, std::move(e));
   return true;
+}
+
+// From the first pass that reads vertices: a method's first pass may be a compute
+// pass, or read none (the compute-tile methods' Footprints, from SV_VertexID alone).
+bool EffectObject::CreateInputLayout(fx::Effect& effect, std::string* error) {
+  fx::EffectTechnique* technique = effect.GetTechniqueByIndex(0);
+  fx::TECHNIQUE_DESC techniqueDesc;
+  if (FAILED(technique->GetDesc(&techniqueDesc))) return true;
+  for (UINT i = 0; i < techniqueDesc.Passes; ++i) {
+    fx::PASS_DESC desc;
+    if (FAILED(technique->GetPassByIndex(i)->GetDesc(&desc)) || desc.IAInputSignatureSize == 0) continue;
+    if (SUCCEEDED(setup_.device->CreateInputLayout(layoutElements_.data(), UINT(layoutElements_.size()),
+                                                   desc.pIAInputSignature, desc.IAInputSignatureSize,
+                                                   layout_.GetAddressOf())))
+      return true;
+    *error = std::string(file_) + ": creating the input layout failed";
+    return false;
+  }
+  return true;  // no pass of this method reads vertices: a later method's makes the layout
 }
 
 void EffectObject::SetCamera(LoadedEffect& e, const Camera& camera) {
@@ -56,6 +66,19 @@ bool EffectObject::DrawFullscreen(DeviceContext* context, const oit::MethodInfo&
   SetCamera(e, camera);
   SetFrameVariables(*e.effect.Get());
   return DrawFullscreenPass(context, e.effect.Get(), frame, nullptr, pass, error);
+}
+
+bool EffectObject::Dispatch(DeviceContext* context, const oit::MethodInfo& method, const Camera& camera,
+                            const oit::FrameDesc& frame, const char* pass, uint32_t x, uint32_t y, uint32_t z,
+                            std::string* error) {
+  if (Empty()) return true;
+  fx::EffectPass* p = PassForFrame(method, camera, pass, error);
+  if (!p) return false;
+  const float size[4] = {float(frame.width), float(frame.height), 0, 0};
+  effects_.at(method.name).effect->GetVariableByName("FrameSize")->AsVector()->SetFloatVector(size);
+  p->Apply(0, context);
+  context->Dispatch(x, y, z);
+  return true;
 }
 
 bool EffectObject::CreateBuffer(UINT size, USAGE usage, UINT bind, const void* data, ComPtr<Buffer>* out) const {

@@ -25,6 +25,10 @@ class EffectObject : public TranslucentObject {
   // The resolve of deferred shading: the method's pass `pass` on a full-screen triangle.
   bool DrawFullscreen(rhi::DeviceContext* context, const oit::MethodInfo& method, const Camera& camera,
                       const oit::FrameDesc& frame, const char* pass, std::string* error) override;
+  // A method's compute pass over the object's buffers (as the resolve).
+  bool Dispatch(rhi::DeviceContext* context, const oit::MethodInfo& method, const Camera& camera,
+                const oit::FrameDesc& frame, const char* pass, uint32_t x, uint32_t y, uint32_t z,
+                std::string* error) override;
 
  protected:
   EffectObject(const ObjectSetup& setup, const char* file, std::vector<rhi::INPUT_ELEMENT_DESC> layout)
@@ -57,6 +61,7 @@ class EffectObject : public TranslucentObject {
     fx::EffectVectorVariable* eye = nullptr;
   };
   void SetCamera(LoadedEffect& e, const Camera& camera);
+  bool CreateInputLayout(fx::Effect& effect, std::string* error);
 
   const char* file_;
   std::vector<rhi::INPUT_ELEMENT_DESC> layoutElements_;

@@ -80,6 +80,7 @@ class Smoke final : public EffectObject {
 
   void Update(DeviceContext* context, bool countLive) override { particles_->Update(context, countLive); }
   uint64_t LiveCount() const override { return particles_->liveCount(); }
+  uint32_t QuadCapacity() const override { return particles_->capacity(); }  // smoke.fx: OBJECT_QUADS
 
   bool Draw(DeviceContext* ctx, const oit::MethodInfo& method, const Camera& camera, const char* pass,
             oit::DrawOrder order, std::string* error) override {

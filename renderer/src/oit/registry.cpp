@@ -22,7 +22,9 @@ namespace renderer::oit {
   X(kMboit)                     \
   X(kMomentTransparency)        \
   X(kMomentTransparencyMinDepth) \
-  X(kMomentTransparencyMinDepth16)
+  X(kMomentTransparencyMinDepth16) \
+  X(kComputeSorted)              \
+  X(kComputeWboit)
 
 #define RENDERER_OIT_DECLARE(info) extern const MethodInfo info;
 RENDERER_OIT_METHODS(RENDERER_OIT_DECLARE)
@@ -53,7 +55,8 @@ std::string DescribeNeeds(uint32_t needs) {
                 {kNeedsMsaa, "MSAA"},
                 {kNeedsFloat32Blend, "float32 blending"},
                 {kNeedsCompute, "compute"},
-                {kNeedsDualSourceBlend, "dual-source blending"}};
+                {kNeedsDualSourceBlend, "dual-source blending"},
+                {kNeedsQuadObjects, "particle objects"}};
   std::string text;
   for (const auto& n : kNames)
     if (needs & n.need) text += (text.empty() ? "" : ", ") + std::string(n.text);

@@ -33,6 +33,9 @@ enum Need : uint32_t {
   kNeedsCompute = 1u << 3,          // compute-shader passes
   // Dual-source blending (SRC1_COLOR): D3D11.0 has it, Vulkan makes it optional (dualSrcBlend).
   kNeedsDualSourceBlend = 1u << 4,
+  // Not of the device: objects whose primitives are camera-facing quads (the particles:
+  // OBJECT_QUADS, oit/common.fxh), which the method bins and shades in compute.
+  kNeedsQuadObjects = 1u << 5,
 };
 // "pixel-shader UAVs, MSAA", or "nothing beyond D3D11.0" for 0.
 std::string DescribeNeeds(uint32_t needs);
@@ -68,6 +71,7 @@ struct FrameTargets {
   rhi::RenderTargetView* frame = nullptr;  // R8G8B8A8_UNORM
   rhi::DepthStencilView* depth = nullptr;  // D32_FLOAT opaque depth: tested, never written by translucency
   rhi::ShaderResourceView* frameView = nullptr;  // the frame's texture, for a method that composites elsewhere
+  rhi::ShaderResourceView* depthView = nullptr;  // the opaque depth as R32_FLOAT, for a method that tests in compute
 };
 
 enum class DrawOrder {
@@ -92,6 +96,10 @@ class Geometry {
   // Calls `set` with every object's effect for the method: the variables of the
   // method's own passes in those effects (the views of its per-pixel buffers).
   virtual void SetEffectVariables(const std::function<void(fx::Effect& effect)>& set) = 0;
+  // Applies the compute pass `pass` of the object's effect, with what its shaders read
+  // of the object bound (as DrawFullscreen's resolve), and dispatches x * y * z groups;
+  // then unbinds the compute shader's resources. One object's pass, as DrawFullscreen.
+  virtual void Dispatch(rhi::DeviceContext* context, const char* pass, uint32_t x, uint32_t y, uint32_t z) = 0;
 
  protected:
   ~Geometry() = default;
@@ -211,6 +219,10 @@ struct MethodSetup {
   FragmentStorage fragmentStorage;
   float minDepthSlope = kDefaultMinDepthSlope;  // moment-transparency-mindepth: m
   uint32_t msaaSamples = kDefaultMsaaSamples;  // the multisampled methods' samples per pixel
+  // The most quads an object of the scene draws in a frame (a particle system's
+  // capacity; TranslucentObject::QuadCapacity): what the compute-tile methods size
+  // their per-particle buffers for.
+  uint32_t quadCapacity = 0;
 };
 
 using MethodFactory = std::unique_ptr<Method> (*)(const MethodInfo& info, const MethodSetup& setup,

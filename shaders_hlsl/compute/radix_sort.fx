@@ -19,6 +19,9 @@
 #if !defined(RADIX_BITS) || !defined(SORT_THREADS) || !defined(SORT_ITEMS)
 #error "RADIX_BITS, SORT_THREADS and SORT_ITEMS must be defined by the loader (radix_sort.cpp)"
 #endif
+#if SORT_ITEMS != 4
+#error "a thread's pairs are one uint4 (LoadKeys, LoadValues)"
+#endif
 #include "compute/indirect.hlsli"
 
 cbuffer SortParams {
@@ -47,6 +50,22 @@ uint BlockPairs(uint block) {
   return first < count ? min(count - first, kBlock) : 0;
 }
 
+// LoadKeys / LoadValues: this thread's kItems consecutive words of the input,
+// one 16-byte load where all are below `pairs` (the group reads its block in one
+// contiguous sweep), else those that are (robust buffer access is off: nothing
+// is read past the count). A macro: glslang takes no buffer as a parameter.
+#define DEFINE_LOAD_PAIRS(name, buffer)                        \
+  uint4 name(uint block, uint thread, uint pairs) {            \
+    uint first = thread * kItems, at = (block * kBlock + first) * 4; \
+    if (first + kItems <= pairs) return buffer.Load4(at);      \
+    uint4 words = 0;                                           \
+    [unroll] for (uint m = 0; m < kItems; ++m)                 \
+      if (first + m < pairs) words[m] = buffer.Load(at + m * 4); \
+    return words;                                              \
+  }
+DEFINE_LOAD_PAIRS(LoadKeys, SortKeysIn)
+DEFINE_LOAD_PAIRS(LoadValues, SortValuesIn)
+
 // ---------------------------------------------------------------------------
 groupshared uint BlockDigitCounts[kRadix];
 
@@ -56,78 +75,109 @@ void CSHistogram(uint3 group : SV_GroupID, uint thread : SV_GroupIndex) {
   if (pairs == 0) return;  // whole groups only
   if (thread < kRadix) BlockDigitCounts[thread] = 0;
   GroupMemoryBarrierWithGroupSync();
-  uint first = block * kBlock;
-  [unroll] for (uint k = 0; k < kItems; ++k) {
-    uint i = k * kThreads + thread;
-    if (i < pairs) InterlockedAdd(BlockDigitCounts[Digit(SortKeysIn.Load((first + i) * 4))], 1u);
-  }
+  uint4 keys = LoadKeys(block, thread, pairs);
+  [unroll] for (uint k = 0; k < kItems; ++k)
+    if (thread * kItems + k < pairs) InterlockedAdd(BlockDigitCounts[Digit(keys[k])], 1u);
   GroupMemoryBarrierWithGroupSync();
   if (thread < kRadix) SortCounts.Store((thread * SortMaxBlocks + block) * 4, BlockDigitCounts[thread]);
 }
 
 // ---------------------------------------------------------------------------
-groupshared uint BlockKeys[kBlock];
-groupshared uint BlockValues[kBlock];
-groupshared uint ThreadDigitCounts[kRadix * kThreads];  // [digit][thread]; then their exclusive scan
+// The scatter's ranks. Each thread counts its pairs of each digit; counter
+// (digit, thread) then becomes the number of the block's pairs ranked before
+// that thread's first pair of that digit: those of smaller digits, then those of
+// the digit in the threads before. Two counters share a word, digit d and
+// d + kRadix / 2 in the low and high 16 bits of word d (a block's counts fit 16
+// bits), so one scan over the words in (word, thread) order gives the low
+// digits their ranks and the high digits theirs less the block's count of low
+// digits, which is added after. The words lie word-major, thread-minor, with one
+// padding word every kCounterWords words, so that a thread's chunk of the scan
+// (kCounterWords consecutive words) is in other banks than its neighbours'.
+static const uint kCounterWords = kRadix / 2;  // a thread's
+static const uint kWords = kCounterWords * kThreads;
+static const uint kChunkRows = kThreads / kCounterWords;  // the chunk sums' scan: rows of kCounterWords
+groupshared uint CounterWords[kWords + kWords / kCounterWords];
 groupshared uint ChunkSums[kThreads];
-groupshared uint DigitBase[kRadix];  // output position of the block's pairs of a digit, less their first rank
+groupshared uint RowSums[kChunkRows];
+groupshared uint LowDigitPairs;       // the block's pairs of the low digits (< kRadix / 2)
+groupshared uint DigitBase[kRadix];   // output position of the block's pairs of a digit, less their first rank
+groupshared uint BlockKeys[kBlock];   // the block's pairs in rank order
+groupshared uint BlockValues[kBlock];
+// D3D11's 32 KB of groupshared memory: 2,304 + 256 + 32 + 1 + 16 + 2 x 1,024 words.
 
-// The exclusive scan of ThreadDigitCounts in place: each thread sums a chunk of
-// kRadix consecutive counts, the chunk sums are scanned (Hillis-Steele), and the
-// chunks are rewritten as running sums from their chunk's offset.
-void ScanThreadDigitCounts(uint thread) {
-  uint chunk = thread * kRadix, sum = 0;
-  [unroll] for (uint i = 0; i < kRadix; ++i) sum += ThreadDigitCounts[chunk + i];
+uint CounterWord(uint word, uint thread) {
+  uint i = word * kThreads + thread;
+  return i + i / kCounterWords;
+}
+
+// Every counter word replaced by the sum of those before it: each thread sums a
+// chunk of consecutive words, the chunk sums are scanned in rows and the rows'
+// sums by one thread (3 barriers for any size), and the chunks are rewritten as
+// running sums. Sets LowDigitPairs.
+void ScanCounterWords(uint thread) {
+  uint chunk = thread * (kCounterWords + 1), sum = 0;  // words thread * kCounterWords.., after their padding
+  [unroll] for (uint i = 0; i < kCounterWords; ++i) sum += CounterWords[chunk + i];
   ChunkSums[thread] = sum;
   GroupMemoryBarrierWithGroupSync();
-  for (uint offset = 1; offset < kThreads; offset <<= 1) {
-    uint inclusive = ChunkSums[thread] + (thread >= offset ? ChunkSums[thread - offset] : 0);
-    GroupMemoryBarrierWithGroupSync();
-    ChunkSums[thread] = inclusive;
-    GroupMemoryBarrierWithGroupSync();
+  if (thread < kChunkRows) {
+    uint running = 0;
+    [unroll] for (uint j = 0; j < kCounterWords; ++j) {
+      uint c = ChunkSums[thread * kCounterWords + j];
+      ChunkSums[thread * kCounterWords + j] = running;
+      running += c;
+    }
+    RowSums[thread] = running;
   }
-  uint running = ChunkSums[thread] - sum;
-  [unroll] for (uint j = 0; j < kRadix; ++j) {
-    uint c = ThreadDigitCounts[chunk + j];
-    ThreadDigitCounts[chunk + j] = running;
+  GroupMemoryBarrierWithGroupSync();
+  if (thread == 0) {
+    uint running = 0;
+    for (uint r = 0; r < kChunkRows; ++r) {
+      uint c = RowSums[r];
+      RowSums[r] = running;
+      running += c;
+    }
+    LowDigitPairs = running & 0xffff;
+  }
+  GroupMemoryBarrierWithGroupSync();
+  uint running = ChunkSums[thread] + RowSums[thread / kCounterWords];
+  [unroll] for (uint k = 0; k < kCounterWords; ++k) {
+    uint c = CounterWords[chunk + k];
+    CounterWords[chunk + k] = running;
     running += c;
   }
+}
+
+// The block's pairs ranked before `thread`'s first pair of `digit` (after the scan).
+uint Rank(uint digit, uint thread) {
+  uint word = CounterWords[CounterWord(digit % kCounterWords, thread)];
+  return digit < kCounterWords ? word & 0xffff : (word >> 16) + LowDigitPairs;
 }
 
 [numthreads(kThreads, 1, 1)]
 void CSScatter(uint3 group : SV_GroupID, uint thread : SV_GroupIndex) {
   uint block = IndirectGroupIndex(group), pairs = BlockPairs(block);
   if (pairs == 0) return;
-  uint first = block * kBlock;
-  [unroll] for (uint k = 0; k < kItems; ++k) {
-    uint i = k * kThreads + thread;  // coalesced
-    if (i < pairs) {
-      BlockKeys[i] = SortKeysIn.Load((first + i) * 4);
-      BlockValues[i] = SortValuesIn.Load((first + i) * 4);
-    }
-  }
-  [unroll] for (uint d = 0; d < kRadix; ++d) ThreadDigitCounts[d * kThreads + thread] = 0;
-  GroupMemoryBarrierWithGroupSync();
-
-  // This thread's consecutive pairs and their digits.
-  uint keys[kItems], values[kItems], digits[kItems];
-  [unroll] for (uint m = 0; m < kItems; ++m) {
-    uint i = thread * kItems + m;
-    keys[m] = BlockKeys[i];
-    values[m] = BlockValues[i];
-    digits[m] = i < pairs ? Digit(keys[m]) : kNoDigit;
-    if (digits[m] != kNoDigit) ThreadDigitCounts[digits[m] * kThreads + thread] += 1;
+  // This thread's kItems consecutive pairs and their digits.
+  uint4 keys = LoadKeys(block, thread, pairs), values = LoadValues(block, thread, pairs);
+  uint digits[kItems];
+  [unroll] for (uint m = 0; m < kItems; ++m) digits[m] = thread * kItems + m < pairs ? Digit(keys[m]) : kNoDigit;
+  [unroll] for (uint w = 0; w < kCounterWords; ++w) {
+    uint n = 0;
+    [unroll] for (uint m2 = 0; m2 < kItems; ++m2)
+      n += digits[m2] == w ? 1 : digits[m2] == w + kCounterWords ? 0x10000 : 0;
+    CounterWords[CounterWord(w, thread)] = n;
   }
   GroupMemoryBarrierWithGroupSync();
-  ScanThreadDigitCounts(thread);
+  ScanCounterWords(thread);
   GroupMemoryBarrierWithGroupSync();
 
   if (thread < kRadix)
-    DigitBase[thread] = SortCounts.Load((thread * SortMaxBlocks + block) * 4) - ThreadDigitCounts[thread * kThreads];
-  // Each pair at its rank in the block (BlockKeys were all read above).
+    DigitBase[thread] = SortCounts.Load((thread * SortMaxBlocks + block) * 4) - Rank(thread, 0);
+  // Each pair at its rank in the block: its digit's rank in this thread plus
+  // its pairs of that digit before it.
   [unroll] for (uint n = 0; n < kItems; ++n) {
     if (digits[n] == kNoDigit) continue;
-    uint rank = ThreadDigitCounts[digits[n] * kThreads + thread];
+    uint rank = Rank(digits[n], thread);
     [unroll] for (uint e = 0; e < n; ++e) rank += digits[e] == digits[n] ? 1 : 0;
     BlockKeys[rank] = keys[n];
     BlockValues[rank] = values[n];
@@ -138,9 +188,9 @@ void CSScatter(uint3 group : SV_GroupID, uint thread : SV_GroupIndex) {
   [unroll] for (uint o = 0; o < kItems; ++o) {
     uint r = o * kThreads + thread;
     if (r < pairs) {
-      uint key = BlockKeys[r], at = (DigitBase[Digit(key)] + r) * 4;
-      SortKeysOut.Store(at, key);
-      SortValuesOut.Store(at, BlockValues[r]);
+      uint key = BlockKeys[r], to = (DigitBase[Digit(key)] + r) * 4;
+      SortKeysOut.Store(to, key);
+      SortValuesOut.Store(to, BlockValues[r]);
     }
   }
 }

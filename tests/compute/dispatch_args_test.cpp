@@ -2,10 +2,11 @@
 // arguments written on the GPU from a count on the GPU, against values worked out
 // by hand (the split of a group count over 65,535 into x and y included), and a
 // dispatch sized by them that visits every item below the count exactly once.
+#include "renderer/compute/dispatch_args.h"
+
 #include <string_view>
 
 #include "compute_fixture.h"
-#include "renderer/compute/dispatch_args.h"
 #include "renderer/effect_files.h"
 
 namespace rhi_test {
@@ -51,13 +52,12 @@ TEST_P(DispatchArgsTest, WritesTheGroupsAndTheCount) {
 constexpr uint32_t kNoMax = UINT32_MAX;
 INSTANTIATE_TEST_SUITE_P(
     Counts, DispatchArgsTest,
-    ::testing::Values(ArgsCase{0, 256, kNoMax, 0, 1}, ArgsCase{1, 256, kNoMax, 1, 1},
-                      ArgsCase{256, 256, kNoMax, 1, 1}, ArgsCase{257, 256, kNoMax, 2, 1},
-                      ArgsCase{65535u * 256, 256, kNoMax, 65535, 1},
+    ::testing::Values(ArgsCase{0, 256, kNoMax, 0, 1}, ArgsCase{1, 256, kNoMax, 1, 1}, ArgsCase{256, 256, kNoMax, 1, 1},
+                      ArgsCase{257, 256, kNoMax, 2, 1}, ArgsCase{65535u * 256, 256, kNoMax, 65535, 1},
                       ArgsCase{65535u * 256 + 1, 256, kNoMax, 32768, 2},  // 65,536 groups: two rows
-                      ArgsCase{200000, 1, kNoMax, 50000, 4},  // 3 rows hold 196,605
-                      ArgsCase{1000, 256, 300, 2, 1},         // over the maximum: the maximum
-                      ArgsCase{kNoMax, 1024, kNoMax, 64528, 65}));  // 4,194,304 groups
+                      ArgsCase{200000, 1, kNoMax, 50000, 4},              // 3 rows hold 196,605
+                      ArgsCase{1000, 256, 300, 2, 1},                     // over the maximum: the maximum
+                      ArgsCase{kNoMax, 1024, kNoMax, 64528, 65}));        // 4,194,304 groups
 
 TEST_F(ComputeTest, DispatchArgsRefusesABadSlotOrGroupSize) {
   std::string error;

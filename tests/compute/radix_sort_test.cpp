@@ -3,12 +3,13 @@
 // out in index order), at sizes around its block (1,024 pairs) and up to 2^22,
 // with counts on the GPU at, below and above the sort's maximum (the words past
 // the count stay as they were), and the passes it reports against those it runs.
+#include "renderer/compute/radix_sort.h"
+
 #include <algorithm>
 #include <numeric>
 #include <random>
 
 #include "compute_fixture.h"
-#include "renderer/compute/radix_sort.h"
 
 namespace rhi_test {
 namespace {
@@ -53,7 +54,8 @@ class RadixSortTest : public ComputeTest, public ::testing::WithParamInterface<S
     const uint32_t mask = keyBits >= 32 ? ~0u : (1u << keyBits) - 1;
     std::vector<uint32_t> order(sorted);
     std::iota(order.begin(), order.end(), 0u);
-    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return (keys[a] & mask) < (keys[b] & mask); });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](uint32_t a, uint32_t b) { return (keys[a] & mask) < (keys[b] & mask); });
     std::vector<uint32_t> wantKeys = keys, wantValues = values;
     for (uint32_t i = 0; i < sorted; ++i) wantKeys[i] = keys[order[i]], wantValues[i] = order[i];
 
@@ -62,9 +64,9 @@ class RadixSortTest : public ComputeTest, public ::testing::WithParamInterface<S
     EXPECT_TRUE(gotKeys == wantKeys) << "first wrong key at "
                                      << std::mismatch(gotKeys.begin(), gotKeys.end(), wantKeys.begin()).first -
                                             gotKeys.begin();
-    EXPECT_TRUE(gotValues == wantValues) << "first wrong value at "
-                                         << std::mismatch(gotValues.begin(), gotValues.end(), wantValues.begin()).first -
-                                                gotValues.begin();
+    EXPECT_TRUE(gotValues == wantValues)
+        << "first wrong value at "
+        << std::mismatch(gotValues.begin(), gotValues.end(), wantValues.begin()).first - gotValues.begin();
   }
 
   std::unique_ptr<RadixSort> Create(uint32_t maxCount) {
@@ -86,16 +88,16 @@ INSTANTIATE_TEST_SUITE_P(
     Sizes, RadixSortTest,
     ::testing::Values(
         // All 32 bits, count = maximum: empty, one, around a block (1,024) and a scan group, odd, large.
-        SortCase{0, 0, 32}, SortCase{1, 1, 32}, SortCase{255, 255, 32}, SortCase{256, 256, 32},
-        SortCase{257, 257, 32}, SortCase{4097, 4097, 32}, SortCase{65539, 65539, 32},
-        SortCase{1u << 20, 1u << 20, 32}, SortCase{1u << 22, 1u << 22, 32},
+        SortCase{0, 0, 32}, SortCase{1, 1, 32}, SortCase{255, 255, 32}, SortCase{256, 256, 32}, SortCase{257, 257, 32},
+        SortCase{4097, 4097, 32}, SortCase{65539, 65539, 32}, SortCase{1u << 20, 1u << 20, 32},
+        SortCase{1u << 22, 1u << 22, 32},
         // 13 bits: four passes, the last of one bit.
         SortCase{257, 257, 13}, SortCase{65539, 65539, 13}, SortCase{1u << 20, 1u << 20, 13},
         // An odd number of passes (the result copied back), one pass of one bit, none.
         SortCase{4097, 4097, 4}, SortCase{4097, 4097, 1}, SortCase{4097, 4097, 0},
         // The GPU's count below the maximum, zero, and above it (the maximum is sorted).
-        SortCase{1000, 4097, 32}, SortCase{65539, 1u << 20, 13}, SortCase{0, 4097, 32},
-        SortCase{5000, 4097, 32}, SortCase{1u << 20, 65539, 32}));
+        SortCase{1000, 4097, 32}, SortCase{65539, 1u << 20, 13}, SortCase{0, 4097, 32}, SortCase{5000, 4097, 32},
+        SortCase{1u << 20, 65539, 32}));
 
 TEST_F(RadixSortTest, SortsAgainWithASmallerCount) {
   auto sort = Create(70000);

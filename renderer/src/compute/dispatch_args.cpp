@@ -69,6 +69,8 @@ void DispatchArgs::Bind(fx::Effect* effect, uint32_t slot) const {
   SetUint(effect, "IndirectArgsOffset", offset(slot));
 }
 
-void DispatchArgs::Dispatch(DeviceContext* ctx, uint32_t slot) const { ctx->DispatchIndirect(buffer_.Get(), offset(slot)); }
+void DispatchArgs::Dispatch(DeviceContext* ctx, uint32_t slot) const {
+  ctx->DispatchIndirect(buffer_.Get(), offset(slot));
+}
 
 }  // namespace renderer::compute

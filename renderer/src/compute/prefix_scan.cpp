@@ -9,8 +9,8 @@
 namespace renderer::compute {
 namespace {
 
-constexpr uint32_t kScanThreads = 256;                // threads a scan group has (SCAN_THREADS)
-constexpr uint32_t kScanBlock = 2 * kScanThreads;     // elements a scan group handles
+constexpr uint32_t kScanThreads = 256;              // threads a scan group has (SCAN_THREADS)
+constexpr uint32_t kScanBlock = 2 * kScanThreads;   // elements a scan group handles
 constexpr uint32_t kMaxGroupsPerDimension = 65535;  // D3D11_CS_DISPATCH_MAX_THREAD_GROUPS_PER_DIMENSION
 
 uint32_t Blocks(uint32_t n) { return (n + kScanBlock - 1) / kScanBlock; }
@@ -46,6 +46,7 @@ bool PrefixScan::Initialize(rhi::Device* device, uint32_t length, std::string* e
     if (Blocks(n) == 1) break;
   }
   for (size_t i = 1; i < levels_.size(); ++i) passNames_.push_back("AddBlockOffsets");
+  passNamesWithoutTotal_ = passNames_;
   passNames_.push_back("Total");
   effect_ = LoadEffect(device, "compute/prefix_scan.fx", {{"SCAN_THREADS", std::to_string(kScanThreads)}}, error);
   return effect_ && (scanBlocks_ = FindPass(effect_.Get(), nullptr, "ScanBlocks", error)) &&
@@ -56,6 +57,7 @@ bool PrefixScan::Initialize(rhi::Device* device, uint32_t length, std::string* e
 void PrefixScan::Run(rhi::DeviceContext* ctx, rhi::UnorderedAccessView* input, rhi::UnorderedAccessView* output,
                      rhi::UnorderedAccessView* total, oit::PassMarks* marks, size_t* pass) {
   ScanLevel(ctx, 0, input, output, marks, pass);
+  if (!total) return;
   if (marks) marks->BeginPass((*pass)++);
   Dispatch(ctx, total_, length_, input, output, nullptr, total);
 }

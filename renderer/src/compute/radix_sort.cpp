@@ -17,7 +17,9 @@ constexpr uint32_t kRadix = 1u << RadixSort::kRadixBits;
 constexpr uint32_t kArgsSlot = 0;  // the blocks of the count
 constexpr uint32_t kMaxWords = UINT32_MAX / 4;
 
-uint32_t DigitPasses(uint32_t keyBits) { return (std::min(keyBits, 32u) + RadixSort::kRadixBits - 1) / RadixSort::kRadixBits; }
+uint32_t DigitPasses(uint32_t keyBits) {
+  return (std::min(keyBits, 32u) + RadixSort::kRadixBits - 1) / RadixSort::kRadixBits;
+}
 
 }  // namespace
 
@@ -25,7 +27,6 @@ struct RadixSort::Buffers {
   oit::ViewedBuffer keys, values;  // the other side of each pass
   oit::ViewedBuffer counts;        // kRadix x maxBlocks digit counts, digit-major
   oit::ViewedBuffer offsets;       // their exclusive scan
-  oit::ViewedBuffer total;         // the scan's total (unused: it is the count)
 };
 
 RadixSort::RadixSort() = default;
@@ -49,8 +50,7 @@ bool RadixSort::Initialize(rhi::Device* device, uint32_t maxCount, std::string* 
   buffers_ = std::make_unique<Buffers>();
   Buffers& b = *buffers_;
   if (!b.keys.CreateRaw(device, std::max(maxCount, 1u)) || !b.values.CreateRaw(device, std::max(maxCount, 1u)) ||
-      !b.counts.CreateRaw(device, scanLength) || !b.offsets.CreateRaw(device, scanLength) ||
-      !b.total.CreateRaw(device, 1)) {
+      !b.counts.CreateRaw(device, scanLength) || !b.offsets.CreateRaw(device, scanLength)) {
     *error = "radix sort: creating the scratch buffers for " + std::to_string(maxCount) + " pairs failed";
     return false;
   }
@@ -62,7 +62,7 @@ bool RadixSort::Initialize(rhi::Device* device, uint32_t maxCount, std::string* 
     const uint32_t digits = DigitPasses(bits);
     for (uint32_t d = 0; d < digits; ++d) {
       names.push_back("Histogram");
-      names.insert(names.end(), scan_->PassNames().begin(), scan_->PassNames().end());
+      names.insert(names.end(), scan_->PassNames(false).begin(), scan_->PassNames(false).end());
       names.push_back("Scatter");
     }
     if (digits % 2) names.push_back("CopyBack");
@@ -102,7 +102,7 @@ void RadixSort::Sort(rhi::DeviceContext* ctx, UnorderedAccessView* keys, Unorder
     SetUint(effect_.Get(), "SortDigitMask", (1u << bits) - 1);
     begin();
     Dispatch(ctx, histogram_, keysIn, valuesIn, nullptr, nullptr, b.counts.uav.Get());
-    scan_->Run(ctx, b.counts.uav.Get(), b.offsets.uav.Get(), b.total.uav.Get(), marks, pass);
+    scan_->Run(ctx, b.counts.uav.Get(), b.offsets.uav.Get(), nullptr, marks, pass);  // its total is the count
     begin();
     Dispatch(ctx, scatter_, keysIn, valuesIn, keysOut, valuesOut, b.offsets.uav.Get());
     std::swap(keysIn, keysOut);
@@ -135,8 +135,7 @@ void RadixSort::Dispatch(rhi::DeviceContext* ctx, fx::EffectPass* pass, Unordere
 
 uint64_t RadixSort::MemoryBytes() const {
   const Buffers& b = *buffers_;
-  return b.keys.bytes + b.values.bytes + b.counts.bytes + b.offsets.bytes + b.total.bytes + scan_->MemoryBytes() +
-         args_->MemoryBytes();
+  return b.keys.bytes + b.values.bytes + b.counts.bytes + b.offsets.bytes + scan_->MemoryBytes() + args_->MemoryBytes();
 }
 
 }  // namespace renderer::compute

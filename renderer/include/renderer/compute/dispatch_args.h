@@ -29,8 +29,8 @@ class DispatchArgs {
   // rows, x the fewest groups a row, so at most y - 1 groups past the last.
   // Refused (false, nothing written) for a slot out of range or
   // threadsPerGroup 0.
-  bool Write(rhi::DeviceContext* context, rhi::UnorderedAccessView* count, uint32_t countWord,
-             uint32_t threadsPerGroup, uint32_t slot, uint32_t maxCount = UINT32_MAX);
+  bool Write(rhi::DeviceContext* context, rhi::UnorderedAccessView* count, uint32_t countWord, uint32_t threadsPerGroup,
+             uint32_t slot, uint32_t maxCount = UINT32_MAX);
 
   // Sets indirect.hlsli's variables in `effect` (IndirectArgs, IndirectArgsOffset)
   // for a dispatch sized by `slot`; apply the pass after it.

@@ -24,12 +24,16 @@ class PrefixScan {
   static std::unique_ptr<PrefixScan> Create(rhi::Device* device, uint32_t length, std::string* error);
   ~PrefixScan();
   // Scans `input` (a raw UAV of `length` words) into `output` (likewise) and
-  // writes the sum of all elements into the first word of `total` (a raw UAV).
-  // With `marks`, each pass begins with marks->BeginPass((*pass)++).
+  // writes the sum of all elements into the first word of `total` (a raw UAV;
+  // null: no Total pass). With `marks`, each pass begins with
+  // marks->BeginPass((*pass)++).
   void Run(rhi::DeviceContext* context, rhi::UnorderedAccessView* input, rhi::UnorderedAccessView* output,
            rhi::UnorderedAccessView* total, oit::PassMarks* marks = nullptr, size_t* pass = nullptr);
-  // The passes Run applies, in order ("ScanBlocks", ..., "Total").
-  const std::vector<std::string>& PassNames() const { return passNames_; }
+  // The passes Run applies, in order ("ScanBlocks", ..., "Total"); without the
+  // total, the same less "Total".
+  const std::vector<std::string>& PassNames(bool total = true) const {
+    return total ? passNames_ : passNamesWithoutTotal_;
+  }
   // Its block sums at every level.
   uint64_t MemoryBytes() const;
 
@@ -46,7 +50,7 @@ class PrefixScan {
   std::vector<Level> levels_;
   rhi::ComPtr<fx::Effect> effect_;
   fx::EffectPass *scanBlocks_ = nullptr, *addBlockOffsets_ = nullptr, *total_ = nullptr;
-  std::vector<std::string> passNames_;
+  std::vector<std::string> passNames_, passNamesWithoutTotal_;
 };
 
 }  // namespace renderer::compute

@@ -24,8 +24,8 @@ namespace renderer::compute {
 // scatter ranked in shared memory; two scratch buffers in turn.
 class RadixSort {
  public:
-  static constexpr uint32_t kRadixBits = 4;     // key bits a pass
-  static constexpr uint32_t kThreads = 256;     // a group's threads
+  static constexpr uint32_t kRadixBits = 4;  // key bits a pass
+  static constexpr uint32_t kThreads = 256;  // a group's threads
   static constexpr uint32_t kItemsPerThread = 4;
   static constexpr uint32_t kBlock = kThreads * kItemsPerThread;  // pairs a group (block) handles
 
@@ -43,8 +43,8 @@ class RadixSort {
   // are left as they are. With `marks`, each pass (PassNames(keyBits)) begins
   // with marks->BeginPass((*pass)++).
   void Sort(rhi::DeviceContext* context, rhi::UnorderedAccessView* keys, rhi::UnorderedAccessView* values,
-            rhi::UnorderedAccessView* count, uint32_t countWord, uint32_t keyBits = 32,
-            oit::PassMarks* marks = nullptr, size_t* pass = nullptr);
+            rhi::UnorderedAccessView* count, uint32_t countWord, uint32_t keyBits = 32, oit::PassMarks* marks = nullptr,
+            size_t* pass = nullptr);
 
   // The passes Sort runs for `keyBits`, in order (for timing): "SortArgs", then
   // per digit "Histogram", the scan's passes, "Scatter", then "CopyBack" after an

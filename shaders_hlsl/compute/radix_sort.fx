@@ -19,8 +19,11 @@
 #if !defined(RADIX_BITS) || !defined(SORT_THREADS) || !defined(SORT_ITEMS)
 #error "RADIX_BITS, SORT_THREADS and SORT_ITEMS must be defined by the loader (radix_sort.cpp)"
 #endif
-#if SORT_ITEMS != 4
-#error "a thread's pairs are one uint4 (LoadKeys, LoadValues)"
+#if SORT_ITEMS % 4 != 0
+#error "a thread's pairs are loaded as uint4s (LOAD_THREAD_PAIRS)"
+#endif
+#if SORT_THREADS * SORT_ITEMS >= 65536 || SORT_THREADS % ((1 << RADIX_BITS) / 2) != 0 || SORT_THREADS < (1 << RADIX_BITS)
+#error "the scatter's ranks need blocks under 2^16 pairs and threads a multiple of half the digits, at least the digits"
 #endif
 #include "compute/indirect.hlsli"
 
@@ -50,21 +53,24 @@ uint BlockPairs(uint block) {
   return first < count ? min(count - first, kBlock) : 0;
 }
 
-// LoadKeys / LoadValues: this thread's kItems consecutive words of the input,
-// one 16-byte load where all are below `pairs` (the group reads its block in one
-// contiguous sweep), else those that are (robust buffer access is off: nothing
-// is read past the count). A macro: glslang takes no buffer as a parameter.
-#define DEFINE_LOAD_PAIRS(name, buffer)                        \
-  uint4 name(uint block, uint thread, uint pairs) {            \
-    uint first = thread * kItems, at = (block * kBlock + first) * 4; \
-    if (first + kItems <= pairs) return buffer.Load4(at);      \
-    uint4 words = 0;                                           \
-    [unroll] for (uint m = 0; m < kItems; ++m)                 \
-      if (first + m < pairs) words[m] = buffer.Load(at + m * 4); \
-    return words;                                              \
+// words[kItems] = this thread's kItems consecutive words of `buffer` in block
+// `block`: 16-byte loads where all four are below `pairs` (the group reads its
+// block in one contiguous sweep), else those that are, one by one (robust buffer
+// access is off: nothing is read past the count). A macro: glslang takes no
+// buffer as a parameter.
+#define LOAD_THREAD_PAIRS(words, buffer, block, thread, pairs)               \
+  [unroll] for (uint q = 0; q < kItems; q += 4) {                            \
+    uint first = thread * kItems + q, at = (block * kBlock + first) * 4;     \
+    if (first + 4 <= pairs) {                                                \
+      uint4 v = buffer.Load4(at);                                            \
+      words[q] = v.x, words[q + 1] = v.y, words[q + 2] = v.z, words[q + 3] = v.w; \
+    } else {                                                                 \
+      [unroll] for (uint m = 0; m < 4; ++m) {                                \
+        words[q + m] = 0;                                                    \
+        if (first + m < pairs) words[q + m] = buffer.Load(at + m * 4);       \
+      }                                                                      \
+    }                                                                        \
   }
-DEFINE_LOAD_PAIRS(LoadKeys, SortKeysIn)
-DEFINE_LOAD_PAIRS(LoadValues, SortValuesIn)
 
 // ---------------------------------------------------------------------------
 groupshared uint BlockDigitCounts[kRadix];
@@ -75,7 +81,8 @@ void CSHistogram(uint3 group : SV_GroupID, uint thread : SV_GroupIndex) {
   if (pairs == 0) return;  // whole groups only
   if (thread < kRadix) BlockDigitCounts[thread] = 0;
   GroupMemoryBarrierWithGroupSync();
-  uint4 keys = LoadKeys(block, thread, pairs);
+  uint keys[kItems];
+  LOAD_THREAD_PAIRS(keys, SortKeysIn, block, thread, pairs)
   [unroll] for (uint k = 0; k < kItems; ++k)
     if (thread * kItems + k < pairs) InterlockedAdd(BlockDigitCounts[Digit(keys[k])], 1u);
   GroupMemoryBarrierWithGroupSync();
@@ -103,7 +110,7 @@ groupshared uint LowDigitPairs;       // the block's pairs of the low digits (< 
 groupshared uint DigitBase[kRadix];   // output position of the block's pairs of a digit, less their first rank
 groupshared uint BlockKeys[kBlock];   // the block's pairs in rank order
 groupshared uint BlockValues[kBlock];
-// D3D11's 32 KB of groupshared memory: 2,304 + 256 + 32 + 1 + 16 + 2 x 1,024 words.
+// With 128 threads of 8 pairs: 1,152 + 128 + 16 + 1 + 16 + 2 x 1,024 words, 13.4 KB of D3D11's 32 KB.
 
 uint CounterWord(uint word, uint thread) {
   uint i = word * kThreads + thread;
@@ -158,7 +165,9 @@ void CSScatter(uint3 group : SV_GroupID, uint thread : SV_GroupIndex) {
   uint block = IndirectGroupIndex(group), pairs = BlockPairs(block);
   if (pairs == 0) return;
   // This thread's kItems consecutive pairs and their digits.
-  uint4 keys = LoadKeys(block, thread, pairs), values = LoadValues(block, thread, pairs);
+  uint keys[kItems], values[kItems];
+  LOAD_THREAD_PAIRS(keys, SortKeysIn, block, thread, pairs)
+  LOAD_THREAD_PAIRS(values, SortValuesIn, block, thread, pairs)
   uint digits[kItems];
   [unroll] for (uint m = 0; m < kItems; ++m) digits[m] = thread * kItems + m < pairs ? Digit(keys[m]) : kNoDigit;
   [unroll] for (uint w = 0; w < kCounterWords; ++w) {

@@ -25,8 +25,8 @@ namespace renderer::compute {
 class RadixSort {
  public:
   static constexpr uint32_t kRadixBits = 4;  // key bits a pass
-  static constexpr uint32_t kThreads = 256;  // a group's threads
-  static constexpr uint32_t kItemsPerThread = 4;
+  static constexpr uint32_t kThreads = 128;  // a group's threads
+  static constexpr uint32_t kItemsPerThread = 8;
   static constexpr uint32_t kBlock = kThreads * kItemsPerThread;  // pairs a group (block) handles
 
   // For up to maxCount pairs.

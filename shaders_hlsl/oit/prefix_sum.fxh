@@ -3,10 +3,10 @@
 // buffer and the depth (steps 0-1, scene.fx technique Visibility). Passes, in order:
 //   Count           (object) steps 2: per pixel, InterlockedAdd into Counts of the
 //                   fragments that pass the opaque depth test ([earlydepthstencil]).
-//   ScanBlocks, AddBlockOffsets (compute, method.fx) step 3: the exclusive prefix sum
-//                   of Counts into Offsets, 512 elements a group (Blelloch), the
-//                   groups' sums scanned recursively, for any length.
-//   Total           (compute) Offsets[last] + Counts[last]: the fragments of the frame.
+//   ScanBlocks, AddBlockOffsets, Total (compute: renderer::compute::PrefixScan,
+//                   compute/prefix_scan.fx) step 3: the exclusive prefix sum of Counts
+//                   into Offsets; its total, Offsets[last] + Counts[last], is the
+//                   fragments of the frame.
 //   Fill            (object) step 4: each fragment's (triangle id, depth) at
 //                   Offsets[pixel] + InterlockedAdd(Cursors[pixel], 1); the cursors
 //                   end equal to the counts.
@@ -25,80 +25,6 @@
 cbuffer FragmentBufferParams {
   uint FrameWidth;  // pixels in a row of the per-pixel buffers
 };
-
-// Step 3 (compute, the method's own effect): one level of the scan.
-cbuffer ScanParams {
-  uint ScanLength;   // elements of ScanInput / ScanOutput
-  uint ScanGroupsX;  // groups in x of the dispatch (65535 at most a dimension): group = y * ScanGroupsX + x
-};
-RWByteAddressBuffer ScanInput : register(u0);
-RWByteAddressBuffer ScanOutput : register(u1);
-RWByteAddressBuffer ScanBlockSums : register(u2);  // ScanBlocks: each group's sum; AddBlockOffsets: their scan
-RWByteAddressBuffer ScanTotal : register(u3);
-
-static const uint kScanThreads = 256;
-static const uint kScanBlock = 2 * kScanThreads;  // elements a group scans
-groupshared uint ScanShared[kScanBlock];
-
-uint ScanBlockIndex(uint3 group) { return group.y * ScanGroupsX + group.x; }
-
-// Blelloch's work-efficient exclusive scan of one block in shared memory: an
-// up-sweep of partial sums, the block's sum out, then a down-sweep.
-[numthreads(kScanThreads, 1, 1)]
-void CSScanBlocks(uint3 group : SV_GroupID, uint thread : SV_GroupIndex) {
-  uint block = ScanBlockIndex(group);
-  uint first = block * kScanBlock;
-  if (first >= ScanLength) return;  // the dispatch's padding groups, whole
-  uint i0 = first + 2 * thread, i1 = i0 + 1;
-  ScanShared[2 * thread] = i0 < ScanLength ? ScanInput.Load(i0 * 4) : 0;
-  ScanShared[2 * thread + 1] = i1 < ScanLength ? ScanInput.Load(i1 * 4) : 0;
-  uint stride = 1;
-  for (uint active = kScanThreads; active > 0; active >>= 1) {
-    GroupMemoryBarrierWithGroupSync();
-    if (thread < active) {
-      uint left = stride * (2 * thread + 1) - 1, right = stride * (2 * thread + 2) - 1;
-      ScanShared[right] += ScanShared[left];
-    }
-    stride <<= 1;
-  }
-  GroupMemoryBarrierWithGroupSync();
-  if (thread == 0) {
-    ScanBlockSums.Store(block * 4, ScanShared[kScanBlock - 1]);
-    ScanShared[kScanBlock - 1] = 0;
-  }
-  for (uint active2 = 1; active2 < kScanBlock; active2 <<= 1) {
-    stride >>= 1;
-    GroupMemoryBarrierWithGroupSync();
-    if (thread < active2) {
-      uint left = stride * (2 * thread + 1) - 1, right = stride * (2 * thread + 2) - 1;
-      uint sum = ScanShared[left];
-      ScanShared[left] = ScanShared[right];
-      ScanShared[right] += sum;
-    }
-  }
-  GroupMemoryBarrierWithGroupSync();
-  if (i0 < ScanLength) ScanOutput.Store(i0 * 4, ScanShared[2 * thread]);
-  if (i1 < ScanLength) ScanOutput.Store(i1 * 4, ScanShared[2 * thread + 1]);
-}
-
-// Each block's elements plus the scanned sum of the blocks before it.
-[numthreads(kScanThreads, 1, 1)]
-void CSAddBlockOffsets(uint3 group : SV_GroupID, uint thread : SV_GroupIndex) {
-  uint block = ScanBlockIndex(group);
-  uint first = block * kScanBlock;
-  if (first >= ScanLength) return;
-  uint offset = ScanBlockSums.Load(block * 4);
-  uint i0 = first + 2 * thread, i1 = i0 + 1;
-  if (i0 < ScanLength) ScanOutput.Store(i0 * 4, ScanOutput.Load(i0 * 4) + offset);
-  if (i1 < ScanLength) ScanOutput.Store(i1 * 4, ScanOutput.Load(i1 * 4) + offset);
-}
-
-// The frame's fragments: the last offset plus the last count.
-[numthreads(1, 1, 1)]
-void CSTotal() {
-  uint last = (ScanLength - 1) * 4;
-  ScanTotal.Store(0, ScanOutput.Load(last) + ScanInput.Load(last));
-}
 
 #ifdef OBJECT_VS
 RWByteAddressBuffer CountsOut : register(u0);           // Count
@@ -151,19 +77,13 @@ FragmentCursor NextFragment(FragmentCursor c) {
 
 #include "fragment_resolve.fxh"
 
-#define SCAN_PASS(name, cs) \
-  pass name { SetComputeShader(CompileShader(cs_5_0, cs())); }
-
-// With an object, its passes (FX11: a technique holds every pass); without one
-// (oit/method.fx), the scan's compute passes.
-technique11 PrefixSum {
+// With an object, its passes (FX11: a technique holds every pass); the scan's
+// compute passes are compute/prefix_scan.fx's, and without an object
+// (oit/method.fx) the method has none of its own.
 #ifdef OBJECT_VS
+technique11 PrefixSum {
   FRAGMENT_PASS(Count, PSCount)
   FRAGMENT_PASS(Fill, PSFill)
   FRAGMENT_RESOLVE_PASS
-#else
-  SCAN_PASS(ScanBlocks, CSScanBlocks)
-  SCAN_PASS(AddBlockOffsets, CSAddBlockOffsets)
-  SCAN_PASS(Total, CSTotal)
-#endif
 }
+#endif

@@ -1,7 +1,7 @@
 // The fragment-buffer methods (document 004's prefix-sum buffer and per-pixel
 // linked lists, renderer/src/oit/prefix_sum.cpp, linked_list.cpp) against
 // computations that do not use them, validation layer on:
-//  - the GPU prefix scan against a CPU scan, for lengths from 1 to 2^24;
+//  (the GPU prefix scan itself: tests/compute/prefix_scan_test.cpp)
 //  - after a frame, each pixel's cursor equals its count, the offsets are the
 //  CPU's
 //    scan of the counts and the total their sum;
@@ -19,7 +19,6 @@
 //  - a scene of several objects is refused with the reason.
 #include <algorithm>
 #include <cmath>
-#include <random>
 
 #include "fx/effect.h"
 #include "gpu_test.h"
@@ -32,52 +31,6 @@ namespace {
 using renderer::Translucency;
 using renderer::TranslucencySettings;
 using renderer::oit::MethodInfo;
-
-// ---------------------------------------------------------------------------
-// The scan
-
-class PrefixScanTest : public GpuTest, public ::testing::WithParamInterface<uint32_t> {
- protected:
-  ComPtr<rhi::Buffer> RawBuffer(const std::vector<uint32_t>& words, ComPtr<rhi::UnorderedAccessView>* uav) {
-    ComPtr<rhi::Buffer> b = MakeBuffer(rhi::BIND_UNORDERED_ACCESS, words.data(), UINT(words.size() * 4),
-                                       rhi::USAGE_DEFAULT, rhi::RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS);
-    rhi::UNORDERED_ACCESS_VIEW_DESC desc{};
-    desc.Format = rhi::DXGI_FORMAT_R32_TYPELESS;
-    desc.ViewDimension = rhi::UAV_DIMENSION_BUFFER;
-    desc.Buffer = {0, UINT(words.size()), rhi::BUFFER_UAV_FLAG_RAW};
-    EXPECT_EQ(device->CreateUnorderedAccessView(b.Get(), &desc, uav->GetAddressOf()), rhi::S_OK);
-    return b;
-  }
-};
-
-TEST_P(PrefixScanTest, EqualsTheCpuScan) {
-  const uint32_t length = GetParam();
-  std::mt19937 random(length);
-  std::vector<uint32_t> input(length);
-  for (uint32_t& v : input) v = random() % 16;  // per-pixel counts: the sum stays far below 2^32
-  ComPtr<rhi::UnorderedAccessView> inputUav, outputUav, totalUav;
-  ComPtr<rhi::Buffer> in = RawBuffer(input, &inputUav);
-  ComPtr<rhi::Buffer> out = RawBuffer(std::vector<uint32_t>(length, 0xdeadbeef), &outputUav);
-  ComPtr<rhi::Buffer> total = RawBuffer({0xdeadbeef}, &totalUav);
-  std::string error;
-  auto scan = renderer::oit::PrefixScan::Create(device.Get(), length, &error);
-  ASSERT_NE(scan, nullptr) << error;
-  scan->Run(context.Get(), inputUav.Get(), outputUav.Get(), totalUav.Get());
-  std::vector<uint32_t> want(length);
-  uint32_t sum = 0;
-  for (uint32_t i = 0; i < length; ++i) want[i] = sum, sum += input[i];
-  const std::vector<uint32_t> got = ReadBufferAs<uint32_t>(out.Get());
-  ASSERT_EQ(got.size(), want.size());
-  size_t wrong = 0;
-  for (uint32_t i = 0; i < length; ++i) wrong += got[i] != want[i];
-  EXPECT_EQ(wrong, 0u) << "first difference at "
-                       << (std::mismatch(got.begin(), got.end(), want.begin()).first - got.begin());
-  EXPECT_EQ(ReadBufferAs<uint32_t>(total.Get())[0], sum);
-}
-
-// 1, around one group (512), around two levels (512^2 = 262144), a prime, 2^24.
-INSTANTIATE_TEST_SUITE_P(Lengths, PrefixScanTest,
-                         ::testing::Values(1u, 2u, 511u, 512u, 513u, 262143u, 262145u, 1000003u, 1u << 24));
 
 // ---------------------------------------------------------------------------
 // A method that records every fragment with its forward and deferred shading.

@@ -21,7 +21,7 @@
 
 #include "fx/effect.h"
 #include "oit/fragment_buffers.h"
-#include "renderer/effect_files.h"
+#include "renderer/compute/prefix_scan.h"
 
 namespace renderer::oit {
 namespace {
@@ -29,12 +29,8 @@ namespace {
 using rhi::ComPtr;
 using rhi::UINT;
 
-constexpr uint32_t kScanBlock = 512;  // elements a scan group handles (prefix_sum.fxh)
-constexpr uint32_t kMaxGroupsPerDimension = 65535;
 constexpr uint32_t kFragmentBytes = 8;  // (triangle id, depth)
 constexpr uint32_t kShrinkFrames = 120;
-
-uint32_t Blocks(uint32_t n) { return (n + kScanBlock - 1) / kScanBlock; }
 
 std::vector<uint32_t> ReadWords(rhi::Device* device, rhi::DeviceContext* context, const ViewedBuffer& b) {
   const rhi::BUFFER_DESC desc{uint32_t(b.bytes), rhi::USAGE_STAGING, 0, rhi::CPU_ACCESS_READ, 0, 0};
@@ -62,7 +58,7 @@ class PrefixSumMethod final : public Method {
       *error = std::string(info.name) + ": creating the per-pixel buffers failed";
       return false;
     }
-    scan_ = PrefixScan::Create(device_, pixels_, error);
+    scan_ = compute::PrefixScan::Create(device_, pixels_, error);
     if (!scan_) return false;
     passNames_ = {"Count"};
     passNames_.insert(passNames_.end(), scan_->PassNames().begin(), scan_->PassNames().end());
@@ -190,7 +186,7 @@ class PrefixSumMethod final : public Method {
   FragmentSizing sizing_ = FragmentSizing::Exact;
   uint32_t width_ = 0, pixels_ = 0;
   ViewedBuffer counts_, cursors_, offsets_, total_, fragments_;
-  std::unique_ptr<PrefixScan> scan_;
+  std::unique_ptr<compute::PrefixScan> scan_;
   LateReadback readback_;
   uint64_t capacity_ = 0, demand_ = 0, largestRecent_ = 0, lost_ = 0;
   uint32_t framesUnderQuarter_ = 0;
@@ -206,89 +202,6 @@ std::unique_ptr<Method> CreatePrefixSum(const MethodInfo& info, const MethodSetu
 }
 
 }  // namespace
-
-// ---------------------------------------------------------------------------
-// The scan
-
-// One level: its groups' sums, and their scan (the next level's output), which
-// it adds back.
-struct PrefixScan::Level {
-  uint32_t length = 0;
-  ViewedBuffer sums, scannedSums;
-};
-
-std::unique_ptr<PrefixScan> PrefixScan::Create(rhi::Device* device, uint32_t length, std::string* error) {
-  std::unique_ptr<PrefixScan> scan(new PrefixScan());
-  if (!scan->Initialize(device, length, error)) return nullptr;
-  return scan;
-}
-
-PrefixScan::~PrefixScan() = default;
-
-bool PrefixScan::Initialize(rhi::Device* device, uint32_t length, std::string* error) {
-  length_ = length;
-  for (uint32_t n = std::max(length, 1u);; n = Blocks(n)) {
-    Level& level = levels_.emplace_back();
-    level.length = n;
-    if (!level.sums.CreateRaw(device, Blocks(n)) || !level.scannedSums.CreateRaw(device, Blocks(n))) {
-      *error = "prefix scan: creating the block sums failed";
-      return false;
-    }
-    passNames_.push_back("ScanBlocks");
-    if (Blocks(n) == 1) break;
-  }
-  for (size_t i = 1; i < levels_.size(); ++i) passNames_.push_back("AddBlockOffsets");
-  passNames_.push_back("Total");
-  effect_ = LoadMethodEffect(device, *FindMethod("prefix-sum"), nullptr, {}, error);
-  return effect_ && (scanBlocks_ = FindPass(effect_.Get(), nullptr, "ScanBlocks", error)) &&
-         (addBlockOffsets_ = FindPass(effect_.Get(), nullptr, "AddBlockOffsets", error)) &&
-         (total_ = FindPass(effect_.Get(), nullptr, "Total", error));
-}
-
-void PrefixScan::Run(rhi::DeviceContext* ctx, rhi::UnorderedAccessView* input, rhi::UnorderedAccessView* output,
-                     rhi::UnorderedAccessView* total, PassMarks* marks, size_t* pass) {
-  ScanLevel(ctx, 0, input, output, marks, pass);
-  if (marks) marks->BeginPass((*pass)++);
-  Dispatch(ctx, total_, length_, input, output, nullptr, total);
-}
-
-// The blocks of `level` scanned with their sums out; with more than one block,
-// the sums scanned (the next level) and each block's offset added back. The
-// passes run in PassNames' order: every level's ScanBlocks, then the
-// AddBlockOffsets back up.
-void PrefixScan::ScanLevel(rhi::DeviceContext* ctx, size_t level, rhi::UnorderedAccessView* input,
-                           rhi::UnorderedAccessView* output, PassMarks* marks, size_t* pass) {
-  Level& l = levels_[level];
-  if (marks) marks->BeginPass((*pass)++);
-  Dispatch(ctx, scanBlocks_, l.length, input, output, l.sums.uav.Get(), nullptr);
-  if (level + 1 == levels_.size()) return;
-  ScanLevel(ctx, level + 1, l.sums.uav.Get(), l.scannedSums.uav.Get(), marks, pass);
-  if (marks) marks->BeginPass((*pass)++);
-  Dispatch(ctx, addBlockOffsets_, l.length, input, output, l.scannedSums.uav.Get(), nullptr);
-}
-
-void PrefixScan::Dispatch(rhi::DeviceContext* ctx, fx::EffectPass* pass, uint32_t length,
-                          rhi::UnorderedAccessView* input, rhi::UnorderedAccessView* output,
-                          rhi::UnorderedAccessView* blockSums, rhi::UnorderedAccessView* total) {
-  const uint32_t groups = pass == total_ ? 1 : Blocks(length);
-  const uint32_t groupsX = std::min(groups, kMaxGroupsPerDimension);
-  effect_->GetVariableByName("ScanLength")->AsScalar()->SetInt(int(length));
-  effect_->GetVariableByName("ScanGroupsX")->AsScalar()->SetInt(int(groupsX));
-  effect_->GetVariableByName("ScanInput")->AsUnorderedAccessView()->SetUnorderedAccessView(input);
-  effect_->GetVariableByName("ScanOutput")->AsUnorderedAccessView()->SetUnorderedAccessView(output);
-  effect_->GetVariableByName("ScanBlockSums")->AsUnorderedAccessView()->SetUnorderedAccessView(blockSums);
-  effect_->GetVariableByName("ScanTotal")->AsUnorderedAccessView()->SetUnorderedAccessView(total);
-  pass->Apply(0, ctx);
-  ctx->Dispatch(groupsX, (groups + groupsX - 1) / groupsX, 1);
-  rhi::UnorderedAccessView* none[4] = {};
-  ctx->CSSetUnorderedAccessViews(0, 4, none, nullptr);  // the next pass may read them as shader resources
-}
-
-uint64_t PrefixScan::MemoryBytes() const {
-  uint64_t bytes = 0;
-  for (const Level& level : levels_) bytes += level.sums.bytes + level.scannedSums.bytes;
-  return bytes;
-}
 
 std::optional<PrefixSumFrame> ReadPrefixSumFrame(const Method& method, rhi::DeviceContext* context) {
   const auto* prefixSum = dynamic_cast<const PrefixSumMethod*>(&method);

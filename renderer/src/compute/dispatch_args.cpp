@@ -1,0 +1,76 @@
+// DispatchIndirect arguments written on the GPU (renderer/compute/dispatch_args.h;
+// shaders_hlsl/compute/dispatch_args.fx).
+#include "renderer/compute/dispatch_args.h"
+
+#include "compute/effect_values.h"
+#include "renderer/effect_files.h"
+
+namespace renderer::compute {
+
+using namespace rhi;
+
+DispatchArgs::~DispatchArgs() = default;
+
+std::unique_ptr<DispatchArgs> DispatchArgs::Create(Device* device, uint32_t slots, std::string* error) {
+  std::unique_ptr<DispatchArgs> args(new DispatchArgs());
+  if (!args->Initialize(device, slots, error)) return nullptr;
+  return args;
+}
+
+bool DispatchArgs::Initialize(Device* device, uint32_t slots, std::string* error) {
+  if (slots == 0) {
+    *error = "dispatch args: no slots asked for";
+    return false;
+  }
+  slots_ = slots;
+  const UINT words = slots * kSlotBytes / 4;
+  const BUFFER_DESC desc{slots * kSlotBytes,
+                         USAGE_DEFAULT,
+                         BIND_UNORDERED_ACCESS | BIND_SHADER_RESOURCE,
+                         0,
+                         RESOURCE_MISC_DRAWINDIRECT_ARGS | RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS,
+                         0};
+  UNORDERED_ACCESS_VIEW_DESC u{};
+  u.Format = DXGI_FORMAT_R32_TYPELESS;
+  u.ViewDimension = UAV_DIMENSION_BUFFER;
+  u.Buffer = {0, words, BUFFER_UAV_FLAG_RAW};
+  SHADER_RESOURCE_VIEW_DESC s{};
+  s.Format = DXGI_FORMAT_R32_TYPELESS;
+  s.ViewDimension = SRV_DIMENSION_BUFFEREX;
+  s.BufferEx = {0, words, BUFFEREX_SRV_FLAG_RAW};
+  if (FAILED(device->CreateBuffer(&desc, nullptr, buffer_.GetAddressOf())) ||
+      FAILED(device->CreateUnorderedAccessView(buffer_.Get(), &u, uav_.GetAddressOf())) ||
+      FAILED(device->CreateShaderResourceView(buffer_.Get(), &s, srv_.GetAddressOf()))) {
+    *error = "dispatch args: creating the argument buffer failed";
+    return false;
+  }
+  effect_ = LoadEffect(device, "compute/dispatch_args.fx", {}, error);
+  return effect_ && (write_ = FindPass(effect_.Get(), nullptr, "Write", error));
+}
+
+bool DispatchArgs::Write(DeviceContext* ctx, UnorderedAccessView* count, uint32_t countWord, uint32_t threadsPerGroup,
+                         uint32_t slot, uint32_t maxCount) {
+  if (slot >= slots_ || threadsPerGroup == 0 || !count) return false;
+  SetUint(effect_.Get(), "CountWord", countWord);
+  SetUint(effect_.Get(), "ItemsPerGroup", threadsPerGroup);
+  SetUint(effect_.Get(), "MaxCount", maxCount);
+  SetUint(effect_.Get(), "ArgsOffset", offset(slot));
+  SetUav(effect_.Get(), "Count", count);
+  SetUav(effect_.Get(), "Args", uav_.Get());
+  write_->Apply(0, ctx);
+  ctx->Dispatch(1, 1, 1);
+  UnorderedAccessView* none[2] = {};
+  ctx->CSSetUnorderedAccessViews(0, 2, none, nullptr);  // the arguments are read next (indirect, SRV)
+  return true;
+}
+
+void DispatchArgs::Bind(fx::Effect* effect, uint32_t slot) const {
+  effect->GetVariableByName("IndirectArgs")->AsShaderResource()->SetResource(srv_.Get());
+  SetUint(effect, "IndirectArgsOffset", offset(slot));
+}
+
+void DispatchArgs::Dispatch(DeviceContext* ctx, uint32_t slot) const {
+  ctx->DispatchIndirect(buffer_.Get(), offset(slot));
+}
+
+}  // namespace renderer::compute

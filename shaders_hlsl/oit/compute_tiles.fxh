@@ -141,54 +141,72 @@ ByteAddressBuffer TileEnd;
 ByteAddressBuffer PairParticles;
 RWTexture2D<float4> Composite : register(u0);  // R8G8B8A8_UNORM, copied into the frame
 
-// x in [0, 1] as an R8G8B8A8_UNORM target stores it (D3D11: round to nearest).
-float4 Unorm8(float4 x) { return floor(saturate(x) * 255.0 + 0.5) / 255.0; }
-// x as an R16G16B16A16_FLOAT target stores it.
-float4 Half(float4 x) { return f16tof32(f32tof16(x)); }
+// The output merger's arithmetic on 8-bit UNORM targets (R8G8B8A8 frame, R8
+// revealage). D3D11 leaves blend precision to the hardware, at the format's or
+// better; this is the format's exactly, as lavapipe blends: the source converted to
+// the format, each product of a factor rounded to it, sums saturated. A blender that
+// keeps more precision differs by at most a step a blend.
+uint4 ToUnorm8(float4 x) { return uint4(floor(saturate(x) * 255.0 + 0.5)); }
+uint4 MulUnorm8(uint4 x, uint4 y) {  // round(x * y / 255)
+  uint4 p = x * y + 128;
+  return (p + (p >> 8)) >> 8;
+}
+// x as an R16G16B16A16_FLOAT target stores it: rounded toward zero (D3D11 allows
+// that or to nearest even; lavapipe's blender truncates), so a sum past the largest
+// half stays there (the paper's weights overflow it in dense smoke) instead of
+// becoming infinite. The sums are never negative.
+float4 Half(float4 x) {
+  uint4 h = f32tof16(x);  // to nearest even
+  float4 nearest = f16tof32(h);
+  return nearest > x ? f16tof32(h - 1) : nearest;
+}
 
 #if TILE_BLEND == TILE_BLEND_OVER
-// `sorted`'s OVER (alpha.fxh's Over, or the object's additive OVER) as the output
-// merger does it into the R8G8B8A8_UNORM frame: the source clamped to the target's
-// range, each blend rounded to 8 bits, so that the image is `sorted`'s.
+// `sorted`'s OVER (alpha.fxh's Over, or the object's additive OVER) into the
+// R8G8B8A8_UNORM frame, blend by blend, so that the image is `sorted`'s.
 struct PixelBlend {
-  float4 frame;
+  uint4 frame;
 };
 PixelBlend BeginPixel(float4 opaque) {
   PixelBlend b;
-  b.frame = opaque;
+  b.frame = ToUnorm8(opaque);
   return b;
 }
 void BlendFragment(inout PixelBlend b, float3 c, float a, float3 t, float z) {
-  float4 src = saturate(float4(c, a));
+  uint4 src = ToUnorm8(float4(c, a));
+  uint4 srcTerm = MulUnorm8(src, src.aaaa);
 #if defined(OBJECT_ADDITIVE) && OBJECT_ADDITIVE
-  b.frame = Unorm8(float4(src.rgb * src.a + b.frame.rgb, b.frame.a));  // SRC_ALPHA, ONE; alpha ZERO, ONE
+  b.frame.rgb = min(srcTerm.rgb + b.frame.rgb, 255);  // SRC_ALPHA, ONE; alpha ZERO, ONE
 #else
-  b.frame = Unorm8(src * float4(src.aaa, 1) + b.frame * (1 - src.a));  // SRC_ALPHA, INV_SRC_ALPHA; alpha ONE, INV_SRC_ALPHA
+  uint4 dstTerm = MulUnorm8(b.frame, (255 - src.a).xxxx);
+  b.frame = min(uint4(srcTerm.rgb, src.a) + dstTerm, 255);  // SRC_ALPHA, INV_SRC_ALPHA; alpha ONE, INV_SRC_ALPHA
 #endif
 }
-float4 EndPixel(PixelBlend b, float4 opaque) { return b.frame; }
+float4 EndPixel(PixelBlend b, float4 opaque) { return b.frame / 255.0; }
 
 #elif TILE_BLEND == TILE_BLEND_WBOIT
 #include "wboit_weight.hlsli"
-// Table 1 in registers, each sum rounded as its target stores it (accum
-// R16G16B16A16_FLOAT, revealage R8_UNORM), then Table 2's compose over the frame.
+// Table 1 per fragment (accum ONE, ONE into R16G16B16A16_FLOAT; revealage ZERO,
+// INV_SRC_COLOR into R8_UNORM), then PSCompose (weighted_compose.fxh) through
+// Table 2 (SRC_ALPHA, INV_SRC_ALPHA) over the frame.
 struct PixelBlend {
   float4 accum;
-  float revealage;
+  uint revealage;  // 8-bit
 };
 PixelBlend BeginPixel(float4 opaque) {
   PixelBlend b;
   b.accum = 0;
-  b.revealage = 1;
+  b.revealage = 255;
   return b;
 }
 void BlendFragment(inout PixelBlend b, float3 c, float a, float3 t, float z) {
-  b.accum = Half(b.accum + float4(c * a, a) * WboitWeight(a, z));  // ONE, ONE
-  b.revealage = Unorm8(b.revealage * (1 - saturate(a)).xxxx).r;  // ZERO, INV_SRC_COLOR
+  b.accum = Half(b.accum + Half(float4(c * a, a) * WboitWeight(a, z)));
+  b.revealage = MulUnorm8(b.revealage.xxxx, (255 - ToUnorm8(a.xxxx).r).xxxx).r;
 }
 float4 EndPixel(PixelBlend b, float4 opaque) {
-  float4 src = saturate(float4(b.accum.rgb / max(b.accum.a, 0.0001), 1.0 - b.revealage));  // PSCompose
-  return Unorm8(src * src.a + opaque * (1 - src.a));  // Table 2: SRC_ALPHA, INV_SRC_ALPHA (colour and alpha)
+  uint4 src = ToUnorm8(float4(b.accum.rgb / max(b.accum.a, 0.0001), 1.0 - b.revealage / 255.0));
+  uint4 dst = ToUnorm8(opaque);
+  return min(MulUnorm8(src, src.aaaa) + MulUnorm8(dst, (255 - src.a).xxxx), 255) / 255.0;
 }
 #endif
 

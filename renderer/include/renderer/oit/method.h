@@ -200,6 +200,10 @@ struct FragmentStorage {
   FragmentSizing sizing = FragmentSizing::Exact;  // prefix-sum
   // linked-list: the node pool's capacity, in nodes per pixel of the frame.
   uint32_t nodesPerPixel = 16;
+  // The compute-tile methods: the (tile, particle) pairs their buffers first hold, per
+  // quad the objects can draw (at least 4,096 pairs); a frame that needs more grows
+  // them and is drawn again (Method::FrameNeedsRedraw).
+  uint32_t tilePairsPerQuad = 4;
 };
 
 // Document 003's m, the slope of the minimum-depth correction (per scene unit of view depth).

@@ -31,11 +31,12 @@
 //       fig001_triangles_wboit_additive_linear_exposure.png (the discussion's variants);
 //       --document 001: only these
 //   replay --bench [--scene demo|paper|heavy|complexity] [--frames N] [--warmup N] [--size WxH]
-//                  [--fragment-sizing exact|late|redraw] [--msaa 4|8]
-//       per registered method: FPS and frame ms from the GPU (TIMESTAMP queries inside a
+//                  [--fragment-sizing exact|late|redraw] [--msaa 4|8] [--methods A,B,...]
+//       per registered method (or those --methods names): FPS and frame ms from the GPU (TIMESTAMP queries inside a
 //       TIMESTAMP_DISJOINT query, median over N frames), per-pass GPU ms (the "3D pass" is
 //       the method's pass that draws the translucent objects, Method::FragmentPass), CPU ms per frame
-//       (RenderFrame's recording and submission, median), wall ms; WBOIT/alpha ratio.
+//       (RenderFrame's recording and submission, median), wall ms; WBOIT/alpha ratio; the
+//       compute-tile methods' translucent passes against alpha's (issue 19).
 //       demo:  the smoke and shards demos at --size (default 640x360);
 //       paper: 1280x720, smoke of a few thousand particles over the opaque scene (Fig. 2);
 //       heavy: 1920x1080, 1M particles plus 10k instanced shards in one frame, then the
@@ -72,6 +73,7 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -130,6 +132,7 @@ struct Options {
   std::string document;  // --figures --document 001|003: that document's figures alone
   float minDepthSlope = renderer::oit::kDefaultMinDepthSlope;  // --min-depth-slope: document 003's m
   uint32_t msaaSamples = renderer::oit::kDefaultMsaaSamples;  // --msaa
+  std::vector<const MethodInfo*> benchMethods;  // --methods: --bench times these alone (empty: all)
 };
 
 // The settings of a replay of `scene` at --size with the methods' options.
@@ -573,9 +576,10 @@ struct BenchReplay {
 };
 
 std::vector<BenchReplay> WarmedUpReplays(rhi::Device* device, rhi::DeviceContext* ctx,
-                                         const renderer::TranslucencySettings& settings, int warmup) {
+                                         const renderer::TranslucencySettings& settings, int warmup,
+                                         const std::vector<const MethodInfo*>& methods) {
   std::vector<BenchReplay> replays;
-  for (const MethodInfo* method : renderer::oit::Methods()) {
+  for (const MethodInfo* method : methods) {
     auto t = Make(device, ctx, settings);
     bool made = true;
     for (int i = 0; i < warmup && made; ++i) {
@@ -642,18 +646,27 @@ int RunBench(rhi::Device* device, rhi::DeviceContext* ctx, const Options& o) {
                 "Gfrag/s", "MiB");
     // One replay per method, each warmed up; then frame i of every method in turn, so that
     // all methods see the same load on a shared machine (lavapipe's cores) over the run.
-    std::vector<BenchReplay> replays = WarmedUpReplays(device, ctx, base, warmup);
+    std::vector<BenchReplay> replays =
+        WarmedUpReplays(device, ctx, base, warmup, o.benchMethods.empty() ? renderer::oit::Methods() : o.benchMethods);
     for (int i = 0; i < frames; ++i)
       for (BenchReplay& r : replays) TimeFrame(*r.replay, *r.method, r.samples);
-    std::map<std::string, double> gpuMs, cpuMs;
+    std::map<std::string, double> gpuMs, cpuMs, translucentMs;
     for (BenchReplay& r : replays) {
       gpuMs[r.method->name] = Median(r.samples.gpu), cpuMs[r.method->name] = Median(r.samples.cpu);
+      translucentMs[r.method->name] = Median(r.samples.fragmentPass) + Median(r.samples.laterPasses);
       PrintBenchRow(r, base, particles);
     }
-    std::printf("%s: WBOIT/alpha GPU frame-time ratio %.3f (target <= 1.27; paper, smoke on D3D11: "
-                "1.183/0.935 = 1.265); CPU ms per frame: alpha %.3f, WBOIT %.3f\n",
-                bc.name.c_str(), gpuMs["alpha"] > 0 ? gpuMs["wboit"] / gpuMs["alpha"] : 0.0, cpuMs["alpha"],
-                cpuMs["wboit"]);
+    if (gpuMs.count("alpha") && gpuMs.count("wboit"))
+      std::printf("%s: WBOIT/alpha GPU frame-time ratio %.3f (target <= 1.27; paper, smoke on D3D11: "
+                  "1.183/0.935 = 1.265); CPU ms per frame: alpha %.3f, WBOIT %.3f\n",
+                  bc.name.c_str(), gpuMs["wboit"] / gpuMs["alpha"], cpuMs["alpha"], cpuMs["wboit"]);
+    // Issue 19: the translucent passes (3D pass + later) of the compute-tile methods against alpha's.
+    for (const char* compute : {"compute-sorted", "compute-wboit"})
+      if (translucentMs.count(compute) && translucentMs.count("alpha") && translucentMs["alpha"] > 0)
+        std::printf("%s: %s translucent passes %.3f ms, alpha's %.3f ms: ratio %.3f (target <= 0.5 in the paper "
+                    "scene); FPS(GPU) %.0f (paper: 1070)\n",
+                    bc.name.c_str(), compute, translucentMs[compute], translucentMs["alpha"],
+                    translucentMs[compute] / translucentMs["alpha"], 1000.0 / gpuMs[compute]);
   }
   return 0;
 }
@@ -715,6 +728,13 @@ int main(int argc, char** argv) {
     } else if (a == "--method") {
       o.method = renderer::oit::FindMethod(next());
       if (!o.method) Fail("--method takes a method: " + renderer::oit::MethodNames());
+    } else if (a == "--methods") {
+      std::stringstream list(next());
+      for (std::string name; std::getline(list, name, ',');) {
+        const MethodInfo* m = renderer::oit::FindMethod(name);
+        if (!m) Fail("--methods takes methods separated by commas: " + renderer::oit::MethodNames());
+        o.benchMethods.push_back(m);
+      }
     } else if (a == "--list-methods") {
       o.listMethods = true;
     } else if (a == "--list-scenes") {
@@ -766,7 +786,7 @@ int main(int argc, char** argv) {
            "\nusage: replay --demo SCENE --method METHOD [--frames N] [--size WxH] [--peel-layers N] [--layer K]"
            " [--fragment-sizing exact|late|redraw] [--min-depth-slope M] [--msaa 4|8] --out DIR"
            "\n       replay --list-methods | --list-scenes"
-           "\n       replay --figures [--document 001|003] --out DIR\n       replay --compare [--size WxH] [--out DIR] [--frames N] [--peel-layers N]\n       replay --bench [--scene demo|paper|heavy|complexity] [--frames N] [--warmup N]"
+           "\n       replay --figures [--document 001|003] --out DIR\n       replay --compare [--size WxH] [--out DIR] [--frames N] [--peel-layers N]\n       replay --bench [--scene demo|paper|heavy|complexity] [--frames N] [--warmup N] [--methods A,B,...]"
            "\n  scenes: " + renderer::SceneNames() + "\n  methods: " + renderer::oit::MethodNames());
     }
   }

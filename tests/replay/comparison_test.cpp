@@ -238,6 +238,11 @@ constexpr ErrorBound kErrorBounds[] = {
     {"magic-circle", "moment-transparency", 5.0},    // 4.522
     {"magic-circle", "moment-transparency-mindepth", 1.4}, // 1.205
     {"magic-circle", "moment-transparency-mindepth-r16", 14.5}, // 13.126
+    // Issue 19's compute tiles, on the particle scenes they draw: as sorted and wboit.
+    {"smoke", "compute-sorted", 0.7},                // 0.569 (sorted: 0.570)
+    {"smoke", "compute-wboit", 4.6},                 // 4.098 (wboit: 4.098)
+    {"fire", "compute-sorted", 18.8},                // 17.037: additive, as sorted
+    {"fire", "compute-wboit", 2.4},                  // 2.104 (wboit: 2.105)
     // Document 001's methods on every scene and every method on its triangles (recorded
     // when the branches met, at 64x36 against prefix-sum; the images checked in replay --compare).
     {"smoke", "wboit-msaa", 12.7},  // 11.489
@@ -399,8 +404,8 @@ TEST_P(ComparisonTest, ExactAtZeroApproximateWithinBoundsOrderingsAsClaimed) {
 }
 
 // A scene of two objects (the smoke plus shards): the fragment-buffer methods refuse it
-// with their reason, and the reference falls back to the first method exact with
-// enough layers.
+// with their reason (so do the compute-tile methods, which draw particles only), and
+// the reference falls back to the first method exact with enough layers.
 TEST_F(GpuTest, ComparisonOfASceneTheFragmentBufferMethodsRefuse) {
   renderer::ComparisonSettings settings = SmallComparison("smoke");
   settings.adjust = [](renderer::TranslucencySettings& t) {
@@ -416,6 +421,10 @@ TEST_F(GpuTest, ComparisonOfASceneTheFragmentBufferMethodsRefuse) {
   for (const MethodResult& r : scene.methods) {
     if (!r.refused) continue;
     ++refused;
+    if (r.method->needs & renderer::oit::kNeedsQuadObjects) {
+      EXPECT_NE(r.reason.find("shards.fx"), std::string::npos) << r.method->name << ": " << r.reason;
+      continue;
+    }
     EXPECT_EQ(r.method->exactness, renderer::oit::Exactness::kExact) << r.method->name;
     EXPECT_NE(r.reason.find("object"), std::string::npos) << r.method->name << ": " << r.reason;
   }

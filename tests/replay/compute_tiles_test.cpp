@@ -13,6 +13,7 @@
 #include <cstdlib>
 
 #include "gpu_test.h"
+#include "rhi/trace.h"
 #include "method_lookup.h"
 #include "renderer/translucency.h"
 
@@ -112,6 +113,37 @@ TEST_F(ComputeTilesTest, PairBuffersTooSmallGrowAndTheFrameIsDrawnAgain) {
   EXPECT_GE(t->redrawnFrames(), 1u);
   const std::vector<uint8_t> compute = t->ReadFrame(), sorted = Again(*t, "sorted");
   ExpectSortedImage(Compare(compute, sorted), compute.size() / 4);
+}
+
+// The passes of each phase in order (the effect passes' "technique/pass" markers),
+// the GPU-sized ones dispatched indirectly, and nothing read back before the blend.
+TEST_F(ComputeTilesTest, AppliesThePassesOfItsPhasesInOrder) {
+  const std::vector<std::string> sorted = {"Footprints", "Compact", "Histogram", "Scatter", "CountTiles",
+                                           "FillPairs",  "Histogram", "Scatter", "TileRanges", "BlendTiles"};
+  const std::vector<std::string> unsorted = {"Footprints", "Compact",   "CountTiles", "FillPairs",
+                                             "Histogram",  "Scatter",   "TileRanges", "BlendTiles"};
+  for (const char* method : {"compute-sorted", "compute-wboit"}) {
+    SCOPED_TRACE(method);
+    rhi::Trace trace;
+    ComPtr<rhi::DeviceContext> traced;
+    ASSERT_EQ(rhi::CreateTracingContext(context.Get(), &trace, traced.GetAddressOf()), rhi::S_OK);
+    std::string error;
+    auto t = Translucency::Create(device.Get(), traced.Get(), Settings("smoke"), &error);
+    ASSERT_NE(t, nullptr) << error;
+    ASSERT_TRUE(t->RenderFrame(Method(method))) << t->error();
+    const std::vector<std::string>& want = std::string(method) == "compute-sorted" ? sorted : unsorted;
+    size_t found = 0, indirect = 0;
+    bool blended = false, readBeforeBlend = false;
+    for (const std::string& call : trace.Filter({"SetMarker", "DispatchIndirect", "Map"})) {
+      if (found < want.size() && call.find("/" + want[found] + ")") != std::string::npos) ++found;
+      blended = blended || call.find("/BlendTiles)") != std::string::npos;
+      indirect += call.rfind("DispatchIndirect", 0) == 0;
+      readBeforeBlend = readBeforeBlend || (!blended && call.rfind("Map", 0) == 0);
+    }
+    EXPECT_EQ(found, want.size()) << "the passes in order, up to " << (found < want.size() ? want[found] : "");
+    EXPECT_GE(indirect, 3u) << "CountTiles, FillPairs and TileRanges at least";
+    EXPECT_FALSE(readBeforeBlend) << "a read-back before the blend";
+  }
 }
 
 TEST_F(ComputeTilesTest, ScenesOfOtherPrimitivesAreRefusedWithTheReason) {

@@ -220,6 +220,7 @@ TEST_F(ExactScenesTest, EveryObjectPassDrawsTheWholeTeapotWithOneDrawIndexed) {
     std::string error;
     auto t = Translucency::Create(device.Get(), traced.Get(), Settings("teapot"), &error);
     ASSERT_NE(t, nullptr) << error;
+    if (!t->Accepts(*method)) continue;  // the compute-tile methods draw particles only
     ASSERT_TRUE(t->RenderFrame(*method)) << t->error();
     // prefix-sum draws the teapot in two passes (count, fill), depth peeling in one a layer: each draws all of it.
     const std::vector<std::string> draws = trace.Filter({"DrawIndexed", "DrawIndexedInstanced", "DrawInstanced"});

@@ -275,6 +275,12 @@ constexpr SortedBound kSortedBounds[] = {
     {"triangles", "moment-transparency", 1.0},  // 0.476
     {"triangles", "moment-transparency-mindepth", 1.0},  // 0.476
     {"triangles", "moment-transparency-mindepth-r16", 8.0},  // 7.193
+    // Issue 19's compute tiles (particles only): compute-sorted is sorted's image within
+    // one step a pixel (compute_tiles_test.cpp), compute-wboit wboit's.
+    {"smoke", "compute-sorted", 0.1},   // 0.027
+    {"smoke", "compute-wboit", 4.5},    // 3.810 (wboit: 3.809)
+    {"fire", "compute-sorted", 0.1},    // 0.008
+    {"fire", "compute-wboit", 17.0},    // 15.271 (wboit: 15.273)
 };
 
 const SortedBound* FindBound(const char* scene, const char* method) {

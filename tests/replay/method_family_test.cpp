@@ -63,13 +63,16 @@ TEST_F(MethodFamilyTest, NeedsAreDescribedInWords) {
 TEST_F(MethodFamilyTest, EveryMethodAppliesThePassesItNames) {
   for (const char* scene : {"smoke", "shards"})
     for (const MethodInfo* method : renderer::oit::Methods()) {
+      // The compute-tile methods name the four phases issue 19 times (Cull, Sort, Bin,
+      // Blend), each several passes of the compute building blocks:
+      // ComputeTilesTest.AppliesThePassesOfItsPhasesInOrder checks those.
+      if (method->needs & renderer::oit::kNeedsQuadObjects) continue;
       SCOPED_TRACE(std::string(scene) + " " + method->name);
       rhi::Trace trace;
       ComPtr<rhi::DeviceContext> traced;
       ASSERT_EQ(rhi::CreateTracingContext(context.Get(), &trace, traced.GetAddressOf()), rhi::S_OK);
       auto t = Make(scene, traced.Get());
       ASSERT_TRUE(t);
-      if (!t->Accepts(*method)) continue;  // the compute-tile methods draw particles only
       ASSERT_TRUE(t->RenderFrame(*method)) << t->error();
       // The frame's own opaque pass is the first Opaque/Scene; a method that draws the
       // backdrop into its own targets (oit::Backdrop) applies that pass again as its own.

@@ -133,6 +133,21 @@ TEST_F(RadixSortTest, MarksEveryPassItNames) {
   }
 }
 
+TEST_F(RadixSortTest, DoesNothingWithoutAView) {
+  auto sort = Create(100);
+  ASSERT_NE(sort, nullptr);
+  const std::vector<uint32_t> keys = KeysWithTies(100, 5);
+  RawBuffer keysBuffer = MakeRaw(keys), values = MakeRaw(std::vector<uint32_t>(100)), count = MakeRaw({100});
+  RecordedPasses marks;
+  size_t pass = 0;
+  sort->Sort(context.Get(), keysBuffer.uav.Get(), values.uav.Get(), nullptr, 0, 32, &marks, &pass);
+  sort->Sort(context.Get(), keysBuffer.uav.Get(), nullptr, count.uav.Get(), 0, 32, &marks, &pass);
+  sort->Sort(context.Get(), nullptr, values.uav.Get(), count.uav.Get(), 0, 32, &marks, &pass);
+  EXPECT_EQ(pass, 0u);
+  EXPECT_TRUE(marks.indices.empty());
+  EXPECT_EQ(Read(keysBuffer), keys);
+}
+
 TEST_F(RadixSortTest, RefusesMoreThanABufferOfWordsHolds) {
   std::string error;
   EXPECT_EQ(RadixSort::Create(device.Get(), 1u << 30, &error), nullptr);

@@ -84,6 +84,8 @@ const std::vector<std::string>& RadixSort::PassNames(uint32_t keyBits) const {
 void RadixSort::Sort(rhi::DeviceContext* ctx, UnorderedAccessView* keys, UnorderedAccessView* values,
                      UnorderedAccessView* count, uint32_t countWord, uint32_t keyBits, oit::PassMarks* marks,
                      size_t* pass) {
+  if (!keys || !values || !count) return;  // nothing to sort, no count to size the passes by
+  keyBits = std::min(keyBits, 32u);
   auto begin = [&] {
     if (marks) marks->BeginPass((*pass)++);
   };

@@ -67,6 +67,7 @@ class RadixSortTest : public ComputeTest, public ::testing::WithParamInterface<S
     EXPECT_TRUE(gotValues == wantValues)
         << "first wrong value at "
         << std::mismatch(gotValues.begin(), gotValues.end(), wantValues.begin()).first - gotValues.begin();
+    EXPECT_EQ(Refusals(), std::vector<std::string>{});  // no hazard (a resource bound to read and write)
   }
 
   std::unique_ptr<RadixSort> Create(uint32_t maxCount) {

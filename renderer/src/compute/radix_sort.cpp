@@ -131,8 +131,6 @@ void RadixSort::Dispatch(rhi::DeviceContext* ctx, fx::EffectPass* pass, Unordere
   args_->Dispatch(ctx, kArgsSlot);
   UnorderedAccessView* noUavs[5] = {};
   ctx->CSSetUnorderedAccessViews(0, 5, noUavs, nullptr);  // the next pass may read them otherwise
-  rhi::ShaderResourceView* noSrv = nullptr;
-  ctx->CSSetShaderResources(0, 1, &noSrv);  // IndirectArgs: DispatchArgs::Write writes it next Sort
 }
 
 uint64_t RadixSort::MemoryBytes() const {

@@ -42,7 +42,7 @@ class RadixSort {
   // read-back; a count over maxCount sorts maxCount. The words past the count
   // are left as they are. With `marks`, each pass (PassNames(keyBits)) begins
   // with marks->BeginPass((*pass)++). Leaves the compute stage's UAV slots 0-4
-  // and SRV slot 0 unbound (an effect's Apply binds what its pass needs). With a
+  // unbound (an effect's Apply binds what its pass needs). With a
   // null keys, values or count view it does nothing (and marks no pass).
   void Sort(rhi::DeviceContext* context, rhi::UnorderedAccessView* keys, rhi::UnorderedAccessView* values,
             rhi::UnorderedAccessView* count, uint32_t countWord, uint32_t keyBits = 32, oit::PassMarks* marks = nullptr,

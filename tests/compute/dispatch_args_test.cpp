@@ -107,6 +107,12 @@ TEST_F(ComputeTest, AnIndirectDispatchVisitsEveryItemBelowTheCountOnce) {
   std::vector<uint32_t> want(items + tail, 1);
   std::fill(want.begin() + items, want.end(), 0);
   EXPECT_TRUE(Read(visits) == want);
+
+  // The arguments are still bound for reading (IndirectArgs): writing them again
+  // unbinds them first, so D3D11's "forcing it to NULL" hazard never comes.
+  ASSERT_TRUE(args->Write(context.Get(), count.uav.Get(), 0, 64, 0));
+  EXPECT_EQ(ReadBufferAs<uint32_t>(args->buffer()), (std::vector<uint32_t>{2048, 1, 1, items}));
+  EXPECT_EQ(Refusals(), std::vector<std::string>{});
 }
 
 }  // namespace

@@ -67,6 +67,7 @@ class RadixSortTest : public ComputeTest, public ::testing::WithParamInterface<S
     EXPECT_TRUE(gotValues == wantValues)
         << "first wrong value at "
         << std::mismatch(gotValues.begin(), gotValues.end(), wantValues.begin()).first - gotValues.begin();
+    EXPECT_EQ(Refusals(), std::vector<std::string>{});  // no hazard (a resource bound to read and write)
   }
 
   std::unique_ptr<RadixSort> Create(uint32_t maxCount) {
@@ -131,6 +132,21 @@ TEST_F(RadixSortTest, MarksEveryPassItNames) {
     EXPECT_EQ(std::count(names.begin(), names.end(), "Scatter"), (bits + 3) / 4) << bits << " bits";
     EXPECT_EQ(std::count(names.begin(), names.end(), "CopyBack"), ((bits + 3) / 4) % 2) << bits << " bits";
   }
+}
+
+TEST_F(RadixSortTest, DoesNothingWithoutAView) {
+  auto sort = Create(100);
+  ASSERT_NE(sort, nullptr);
+  const std::vector<uint32_t> keys = KeysWithTies(100, 5);
+  RawBuffer keysBuffer = MakeRaw(keys), values = MakeRaw(std::vector<uint32_t>(100)), count = MakeRaw({100});
+  RecordedPasses marks;
+  size_t pass = 0;
+  sort->Sort(context.Get(), keysBuffer.uav.Get(), values.uav.Get(), nullptr, 0, 32, &marks, &pass);
+  sort->Sort(context.Get(), keysBuffer.uav.Get(), nullptr, count.uav.Get(), 0, 32, &marks, &pass);
+  sort->Sort(context.Get(), nullptr, values.uav.Get(), count.uav.Get(), 0, 32, &marks, &pass);
+  EXPECT_EQ(pass, 0u);
+  EXPECT_TRUE(marks.indices.empty());
+  EXPECT_EQ(Read(keysBuffer), keys);
 }
 
 TEST_F(RadixSortTest, RefusesMoreThanABufferOfWordsHolds) {

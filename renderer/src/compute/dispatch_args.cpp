@@ -48,6 +48,27 @@ bool DispatchArgs::Initialize(Device* device, uint32_t slots, std::string* error
   return effect_ && (write_ = FindPass(effect_.Get(), nullptr, "Write", error));
 }
 
+namespace {
+
+// Sets to null every compute shader-resource slot that views `resource`, as a D3D11
+// program does before it writes a resource it read (binding it for writing while it
+// is bound for reading makes the runtime force the slot to NULL, with a warning).
+void UnbindFromComputeReads(DeviceContext* ctx, Resource* resource) {
+  ShaderResourceView* views[COMMONSHADER_INPUT_RESOURCE_SLOT_COUNT] = {};
+  ctx->CSGetShaderResources(0, COMMONSHADER_INPUT_RESOURCE_SLOT_COUNT, views);
+  for (UINT slot = 0; slot < COMMONSHADER_INPUT_RESOURCE_SLOT_COUNT; ++slot) {
+    if (!views[slot]) continue;
+    ComPtr<Resource> viewed;
+    views[slot]->GetResource(viewed.GetAddressOf());
+    views[slot]->Release();
+    if (viewed.Get() != resource) continue;
+    ShaderResourceView* none = nullptr;
+    ctx->CSSetShaderResources(slot, 1, &none);
+  }
+}
+
+}  // namespace
+
 bool DispatchArgs::Write(DeviceContext* ctx, UnorderedAccessView* count, uint32_t countWord, uint32_t threadsPerGroup,
                          uint32_t slot, uint32_t maxCount) {
   if (slot >= slots_ || threadsPerGroup == 0 || !count) return false;
@@ -57,6 +78,7 @@ bool DispatchArgs::Write(DeviceContext* ctx, UnorderedAccessView* count, uint32_
   SetUint(effect_.Get(), "ArgsOffset", offset(slot));
   SetUav(effect_.Get(), "Count", count);
   SetUav(effect_.Get(), "Args", uav_.Get());
+  UnbindFromComputeReads(ctx, buffer_.Get());  // IndirectArgs of the dispatches sized by the last Write
   write_->Apply(0, ctx);
   ctx->Dispatch(1, 1, 1);
   UnorderedAccessView* none[2] = {};

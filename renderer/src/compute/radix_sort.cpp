@@ -84,6 +84,8 @@ const std::vector<std::string>& RadixSort::PassNames(uint32_t keyBits) const {
 void RadixSort::Sort(rhi::DeviceContext* ctx, UnorderedAccessView* keys, UnorderedAccessView* values,
                      UnorderedAccessView* count, uint32_t countWord, uint32_t keyBits, oit::PassMarks* marks,
                      size_t* pass) {
+  if (!keys || !values || !count) return;  // nothing to sort, no count to size the passes by
+  keyBits = std::min(keyBits, 32u);
   auto begin = [&] {
     if (marks) marks->BeginPass((*pass)++);
   };
@@ -129,8 +131,6 @@ void RadixSort::Dispatch(rhi::DeviceContext* ctx, fx::EffectPass* pass, Unordere
   args_->Dispatch(ctx, kArgsSlot);
   UnorderedAccessView* noUavs[5] = {};
   ctx->CSSetUnorderedAccessViews(0, 5, noUavs, nullptr);  // the next pass may read them otherwise
-  rhi::ShaderResourceView* noSrv = nullptr;
-  ctx->CSSetShaderResources(0, 1, &noSrv);  // IndirectArgs: DispatchArgs::Write writes it next Sort
 }
 
 uint64_t RadixSort::MemoryBytes() const {

@@ -27,8 +27,10 @@ class DispatchArgs {
   // slot `slot` = (ceil(count / threadsPerGroup), 1, 1, count), the group count
   // split into x * y when over 65,535 (D3D11's limit a dimension): y the fewest
   // rows, x the fewest groups a row, so at most y - 1 groups past the last.
-  // Refused (false, nothing written) for a slot out of range or
-  // threadsPerGroup 0.
+  // Refused (false, nothing written) for a slot out of range, threadsPerGroup
+  // 0 or no count view. Compute shader-resource slots that view the arguments
+  // (IndirectArgs, Bind) are set to null first, so writing them raises no
+  // D3D11 hazard; the compute stage's UAV slots 0-1 are left unbound.
   bool Write(rhi::DeviceContext* context, rhi::UnorderedAccessView* count, uint32_t countWord, uint32_t threadsPerGroup,
              uint32_t slot, uint32_t maxCount = UINT32_MAX);
 

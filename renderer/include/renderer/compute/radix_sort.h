@@ -41,7 +41,9 @@ class RadixSort {
   // GPU: the passes' sizes come from it through DispatchIndirect, never from a
   // read-back; a count over maxCount sorts maxCount. The words past the count
   // are left as they are. With `marks`, each pass (PassNames(keyBits)) begins
-  // with marks->BeginPass((*pass)++).
+  // with marks->BeginPass((*pass)++). Leaves the compute stage's UAV slots 0-4
+  // unbound (an effect's Apply binds what its pass needs). With a
+  // null keys, values or count view it does nothing (and marks no pass).
   void Sort(rhi::DeviceContext* context, rhi::UnorderedAccessView* keys, rhi::UnorderedAccessView* values,
             rhi::UnorderedAccessView* count, uint32_t countWord, uint32_t keyBits = 32, oit::PassMarks* marks = nullptr,
             size_t* pass = nullptr);

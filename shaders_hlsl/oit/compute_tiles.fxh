@@ -38,6 +38,9 @@ cbuffer ComputeTileParams {
   uint TilesX;             // tiles in a row
   uint PrimitiveCapacity;  // words of the per-particle buffers (the particle system's capacity)
   uint PairCapacity;       // (tile, particle) pairs the pair buffers hold
+  // This device's output merger (renderer/output_merger_probe.h), which the blends replay:
+  uint UnormRoundsEachTerm;   // 8-bit: source to 8 bits, each factor's product rounded (else float, rounded once)
+  uint HalfRoundsTowardZero;  // half: sums rounded toward zero (else to nearest even)
 };
 
 // The index of a thread of a one-dimensional pass sized on the GPU (DispatchArgs),
@@ -141,24 +144,31 @@ ByteAddressBuffer TileEnd;
 ByteAddressBuffer PairParticles;
 RWTexture2D<float4> Composite : register(u0);  // R8G8B8A8_UNORM, copied into the frame
 
-// The output merger's arithmetic on 8-bit UNORM targets (R8G8B8A8 frame, R8
-// revealage). D3D11 leaves blend precision to the hardware, at the format's or
-// better; this is the format's exactly, as lavapipe blends: the source converted to
-// the format, each product of a factor rounded to it, sums saturated. A blender that
-// keeps more precision differs by at most a step a blend.
+// The output merger's arithmetic, as this device does it (UnormRoundsEachTerm,
+// HalfRoundsTowardZero: renderer/output_merger_probe.h). D3D11 leaves blend precision
+// to the hardware, at the target format's or better.
 uint4 ToUnorm8(float4 x) { return uint4(floor(saturate(x) * 255.0 + 0.5)); }
 uint4 MulUnorm8(uint4 x, uint4 y) {  // round(x * y / 255)
   uint4 p = x * y + 128;
   return (p + (p >> 8)) >> 8;
 }
-// x as an R16G16B16A16_FLOAT target stores it: rounded toward zero (D3D11 allows
-// that or to nearest even; lavapipe's blender truncates), so a sum past the largest
-// half stays there (the paper's weights overflow it in dense smoke) instead of
-// becoming infinite. The sums are never negative.
+// A blend into an 8-bit UNORM target: dst' = src * srcFactor + dst * (1 - inverse),
+// all in [0, 1] (the source saturated, as the format's range clamps it; the
+// destination factor an INV_* factor, or ONE with inverse 0); `dst` holds 8-bit
+// values. Each term rounded (an 8-bit INV_* factor is 255 minus its value's 8 bits),
+// or the sum once.
+uint4 BlendUnorm8(float4 src, float4 srcFactor, uint4 dst, float4 inverse) {
+  if (UnormRoundsEachTerm != 0)
+    return min(MulUnorm8(ToUnorm8(src), ToUnorm8(srcFactor)) + MulUnorm8(dst, 255 - ToUnorm8(inverse)), 255);
+  return ToUnorm8(src * srcFactor + dst / 255.0 * (1 - inverse));
+}
+// x as an R16G16B16A16_FLOAT target stores it. Toward zero, a sum past the largest half
+// stays there (the paper's weights overflow it in dense smoke); to nearest, it becomes
+// infinite. The sums are never negative.
 float4 Half(float4 x) {
   uint4 h = f32tof16(x);  // to nearest even
   float4 nearest = f16tof32(h);
-  return nearest > x ? f16tof32(h - 1) : nearest;
+  return HalfRoundsTowardZero != 0 && nearest > x ? f16tof32(h - 1) : nearest;
 }
 
 #if TILE_BLEND == TILE_BLEND_OVER
@@ -173,13 +183,11 @@ PixelBlend BeginPixel(float4 opaque) {
   return b;
 }
 void BlendFragment(inout PixelBlend b, float3 c, float a, float3 t, float z) {
-  uint4 src = ToUnorm8(float4(c, a));
-  uint4 srcTerm = MulUnorm8(src, src.aaaa);
+  float4 src = saturate(float4(c, a));
 #if defined(OBJECT_ADDITIVE) && OBJECT_ADDITIVE
-  b.frame.rgb = min(srcTerm.rgb + b.frame.rgb, 255);  // SRC_ALPHA, ONE; alpha ZERO, ONE
+  b.frame = BlendUnorm8(src, float4(src.aaa, 0), b.frame, 0);  // SRC_ALPHA, ONE; alpha ZERO, ONE
 #else
-  uint4 dstTerm = MulUnorm8(b.frame, (255 - src.a).xxxx);
-  b.frame = min(uint4(srcTerm.rgb, src.a) + dstTerm, 255);  // SRC_ALPHA, INV_SRC_ALPHA; alpha ONE, INV_SRC_ALPHA
+  b.frame = BlendUnorm8(src, float4(src.aaa, 1), b.frame, src.a);  // SRC_ALPHA, INV_SRC_ALPHA; ONE, INV_SRC_ALPHA
 #endif
 }
 float4 EndPixel(PixelBlend b, float4 opaque) { return b.frame / 255.0; }
@@ -200,13 +208,13 @@ PixelBlend BeginPixel(float4 opaque) {
   return b;
 }
 void BlendFragment(inout PixelBlend b, float3 c, float a, float3 t, float z) {
-  b.accum = Half(b.accum + Half(float4(c * a, a) * WboitWeight(a, z)));
-  b.revealage = MulUnorm8(b.revealage.xxxx, (255 - ToUnorm8(a.xxxx).r).xxxx).r;
+  b.accum = Half(b.accum + float4(c * a, a) * WboitWeight(a, z));
+  b.revealage = BlendUnorm8(saturate(a).xxxx, 0, b.revealage.xxxx, saturate(a)).r;
 }
 float4 EndPixel(PixelBlend b, float4 opaque) {
-  uint4 src = ToUnorm8(float4(b.accum.rgb / max(b.accum.a, 0.0001), 1.0 - b.revealage / 255.0));
-  uint4 dst = ToUnorm8(opaque);
-  return min(MulUnorm8(src, src.aaaa) + MulUnorm8(dst, (255 - src.a).xxxx), 255) / 255.0;
+  float4 src = float4(b.accum.rgb / max(b.accum.a, 0.0001), 1.0 - b.revealage / 255.0);
+  src = saturate(src);
+  return BlendUnorm8(src, src.aaaa, ToUnorm8(opaque), src.a) / 255.0;
 }
 #endif
 

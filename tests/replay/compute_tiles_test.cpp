@@ -6,7 +6,8 @@
 //    blend rounded as the output merger rounds into the frame;
 //  - compute-wboit equals `wboit` within the rounding its RGBA16F / R8 targets explain;
 //  - pair buffers too small for a frame grow and the frame is drawn again, complete;
-//  - a scene of other primitives is refused with the reason.
+//  - a scene of other primitives is refused with the reason;
+//  - the output-merger probe finds a model that reproduces every probed blend.
 // The references are independent of the code under test: `sorted` sorts on the CPU
 // and blends with the output merger; `wboit` blends with the output merger.
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include "gpu_test.h"
 #include "rhi/trace.h"
 #include "method_lookup.h"
+#include "renderer/output_merger_probe.h"
 #include "renderer/translucency.h"
 
 namespace rhi_test {
@@ -144,6 +146,22 @@ TEST_F(ComputeTilesTest, AppliesThePassesOfItsPhasesInOrder) {
     EXPECT_GE(indirect, 3u) << "CountTiles, FillPairs and TileRanges at least";
     EXPECT_FALSE(readBeforeBlend) << "a read-back before the blend";
   }
+}
+
+// The blends the compute-tile methods replay: one of the two models reproduces every
+// probed pixel of each format (lavapipe: each term rounded, half toward zero; an H100:
+// float, half to nearest even).
+TEST_F(ComputeTilesTest, TheOutputMergerProbeFindsTheDevicesArithmetic) {
+  renderer::OutputMergerArithmetic arithmetic;
+  std::string error;
+  ASSERT_TRUE(renderer::ProbeOutputMergerArithmetic(device.Get(), &arithmetic, &error)) << error;
+  std::printf("%s: 8-bit blends %s (%u of %u pixels), half sums %s (%u of %u)\n", device->GetAdapterName(),
+              arithmetic.unormRoundsEachTerm ? "round each term" : "in float", arithmetic.unormMatches,
+              arithmetic.kProbes, arithmetic.halfRoundsTowardZero ? "toward zero" : "to nearest even",
+              arithmetic.halfMatches, arithmetic.kProbes);
+  EXPECT_EQ(arithmetic.unormMatches, arithmetic.kProbes);
+  EXPECT_EQ(arithmetic.halfMatches, arithmetic.kProbes);
+  EXPECT_TRUE(Refusals().empty());
 }
 
 TEST_F(ComputeTilesTest, ScenesOfOtherPrimitivesAreRefusedWithTheReason) {

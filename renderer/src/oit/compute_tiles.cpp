@@ -12,6 +12,7 @@
 #include "renderer/compute/radix_sort.h"
 #include "renderer/effect_files.h"
 #include "renderer/oit/method.h"
+#include "renderer/output_merger_probe.h"
 
 namespace renderer::oit {
 namespace {
@@ -63,6 +64,7 @@ class ComputeTilesMethod final : public Method {
     args_ = compute::DispatchArgs::Create(device_, kSlots, error);
     if (!visibleScan_ || !pairScan_ || !args_) return false;
     if (sortsByDepth_ && !(depthSort_ = compute::RadixSort::Create(device_, capacity_, error))) return false;
+    if (!ProbeOutputMergerArithmetic(device_, &arithmetic_, error)) return false;
     effect_ = LoadMethodEffect(device_, info, nullptr, {}, error);
     return effect_ && (compact_ = FindPass(effect_.Get(), nullptr, "Compact", error)) &&
            (countTiles_ = FindPass(effect_.Get(), nullptr, "CountTiles", error)) &&
@@ -149,6 +151,8 @@ class ComputeTilesMethod final : public Method {
     e.GetVariableByName("TilesX")->AsScalar()->SetInt(int(tilesX_));
     e.GetVariableByName("PrimitiveCapacity")->AsScalar()->SetInt(int(capacity_));
     e.GetVariableByName("PairCapacity")->AsScalar()->SetInt(int(pairCapacity_));
+    e.GetVariableByName("UnormRoundsEachTerm")->AsScalar()->SetInt(arithmetic_.unormRoundsEachTerm);
+    e.GetVariableByName("HalfRoundsTowardZero")->AsScalar()->SetInt(arithmetic_.halfRoundsTowardZero);
   }
   static void SetUav(fx::Effect& e, const char* name, rhi::UnorderedAccessView* uav) {
     e.GetVariableByName(name)->AsUnorderedAccessView()->SetUnorderedAccessView(uav);
@@ -246,6 +250,7 @@ class ComputeTilesMethod final : public Method {
   rhi::Device* device_ = nullptr;
   uint32_t width_ = 0, height_ = 0, tilesX_ = 0, tilesY_ = 0, capacity_ = 0, pairCapacity_ = 0;
   bool sortsByDepth_ = false;
+  OutputMergerArithmetic arithmetic_;  // the blends the Blend pass replays
   std::vector<std::string> passNames_;
   // Per particle of the buffer (capacity_), then per drawn particle in sorted order.
   ViewedBuffer visible_, visibleOffsets_, keys_, rects_, drawn_, sortKeys_, sortValues_;

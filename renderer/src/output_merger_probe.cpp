@@ -54,17 +54,18 @@ Unorm4 OverEachTermRounded(const Float4& s, const Unorm4& d) {
   return out;
 }
 Unorm4 OverInFloat(const Float4& s, const Unorm4& d) {
-  const float a = std::clamp(s[3], 0.0f, 1.0f);
+  const float a = std::clamp(s[3], 0.0f, 1.0f);  // the factor: the source's float alpha
   Unorm4 out;
-  for (int c = 0; c < 3; ++c) out[c] = ToUnorm8(std::clamp(s[c], 0.0f, 1.0f) * a + float(d[c]) / 255.0f * (1 - a));
-  out[3] = ToUnorm8(a + float(d[3]) / 255.0f * (1 - a));
+  for (int c = 0; c < 3; ++c) out[c] = ToUnorm8(float(ToUnorm8(s[c])) / 255.0f * a + float(d[c]) / 255.0f * (1 - a));
+  out[3] = ToUnorm8(float(ToUnorm8(s[3])) / 255.0f + float(d[3]) / 255.0f * (1 - a));
   return out;
 }
 
-// A positive float as a half holds it, toward zero or to nearest even.
+// A positive float as a half holds it, toward zero or to nearest even; past the
+// largest half, the largest (both devices measured hold it there, neither gives infinity).
 float ToHalf(float v, bool towardZero) {
   constexpr float kLargest = 65504.0f;
-  if (v >= kLargest) return towardZero || v < 65520.0f ? kLargest : std::numeric_limits<float>::infinity();
+  if (v >= kLargest) return kLargest;
   int exponent = 0;
   std::frexp(v, &exponent);  // v = m * 2^exponent, m in [0.5, 1): a half keeps 11 significant bits
   const double spacing = std::ldexp(1.0, std::max(exponent, -13) - 11);

@@ -39,7 +39,7 @@ cbuffer ComputeTileParams {
   uint PrimitiveCapacity;  // words of the per-particle buffers (the particle system's capacity)
   uint PairCapacity;       // (tile, particle) pairs the pair buffers hold
   // This device's output merger (renderer/output_merger_probe.h), which the blends replay:
-  uint UnormRoundsEachTerm;   // 8-bit: source to 8 bits, each factor's product rounded (else float, rounded once)
+  uint UnormRoundsEachTerm;   // 8-bit: factors to 8 bits, each product rounded (else float factors, rounded once)
   uint HalfRoundsTowardZero;  // half: sums rounded toward zero (else to nearest even)
 };
 
@@ -153,20 +153,21 @@ uint4 MulUnorm8(uint4 x, uint4 y) {  // round(x * y / 255)
   return (p + (p >> 8)) >> 8;
 }
 // A blend into an 8-bit UNORM target: dst' = src * srcFactor + dst * (1 - inverse),
-// all in [0, 1] (the source saturated, as the format's range clamps it; the
-// destination factor an INV_* factor, or ONE with inverse 0); `dst` holds 8-bit
-// values. Each term rounded (an 8-bit INV_* factor is 255 minus its value's 8 bits),
-// or the sum once.
+// all in [0, 1] (the destination factor an INV_* factor, or ONE with inverse 0); `dst`
+// holds 8-bit values. The source's values become 8-bit (the target's format) on both
+// devices measured; then either the factors too and each product is rounded (an 8-bit
+// INV_* factor is 255 minus its value's 8 bits), or the factors stay float and the sum
+// is rounded once.
 uint4 BlendUnorm8(float4 src, float4 srcFactor, uint4 dst, float4 inverse) {
   if (UnormRoundsEachTerm != 0)
     return min(MulUnorm8(ToUnorm8(src), ToUnorm8(srcFactor)) + MulUnorm8(dst, 255 - ToUnorm8(inverse)), 255);
-  return ToUnorm8(src * srcFactor + dst / 255.0 * (1 - inverse));
+  return ToUnorm8(ToUnorm8(src) / 255.0 * srcFactor + dst / 255.0 * (1 - inverse));
 }
-// x as an R16G16B16A16_FLOAT target stores it. Toward zero, a sum past the largest half
-// stays there (the paper's weights overflow it in dense smoke); to nearest, it becomes
-// infinite. The sums are never negative.
+// x as an R16G16B16A16_FLOAT target stores it: a sum past the largest half held there
+// (the paper's weights overflow it in dense smoke), the others rounded toward zero or
+// to nearest even. The sums are never negative.
 float4 Half(float4 x) {
-  uint4 h = f32tof16(x);  // to nearest even
+  uint4 h = f32tof16(min(x, 65504.0));  // to nearest even
   float4 nearest = f16tof32(h);
   return HalfRoundsTowardZero != 0 && nearest > x ? f16tof32(h - 1) : nearest;
 }

@@ -16,12 +16,12 @@ namespace renderer {
 
 struct OutputMergerArithmetic {
   static constexpr uint32_t kProbes = 256;  // pixels probed per target format
-  // R8G8B8A8_UNORM: true where the source is converted to 8 bits and each product of
-  // a blend factor rounded to 8 bits before the saturated sum (lavapipe); false where
-  // the blend is computed in float and rounded to 8 bits once (as an H100 does).
+  // R8G8B8A8_UNORM: the source's values are converted to 8 bits either way; true where
+  // the factors are too and each product is rounded to 8 bits before the saturated sum
+  // (lavapipe), false where the factors stay float and the sum is rounded once (an H100).
   bool unormRoundsEachTerm = false;
-  // R16G16B16A16_FLOAT: true where a sum is rounded toward zero (lavapipe; a sum past
-  // the largest half stays there), false where to nearest even (past it: infinity).
+  // R16G16B16A16_FLOAT: true where a sum is rounded toward zero (lavapipe), false where
+  // to nearest even (an H100); a sum past the largest half is held there on both.
   bool halfRoundsTowardZero = false;
   // Of kProbes pixels each, how many the chosen models reproduce exactly.
   uint32_t unormMatches = 0, halfMatches = 0;

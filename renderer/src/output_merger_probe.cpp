@@ -53,11 +53,12 @@ Unorm4 OverEachTermRounded(const Float4& s, const Unorm4& d) {
   out[3] = std::min(s8[3] + MulUnorm8(d[3], 255 - s8[3]), 255u);
   return out;
 }
-Unorm4 OverInFloat(const Float4& s, const Unorm4& d) {
-  const float a = std::clamp(s[3], 0.0f, 1.0f);  // the factor: the source's float alpha
-  Unorm4 out;
-  for (int c = 0; c < 3; ++c) out[c] = ToUnorm8(float(ToUnorm8(s[c])) / 255.0f * a + float(d[c]) / 255.0f * (1 - a));
-  out[3] = ToUnorm8(float(ToUnorm8(s[3])) / 255.0f + float(d[3]) / 255.0f * (1 - a));
+Unorm4 OverRoundedOnce(const Float4& s, const Unorm4& d) {
+  Unorm4 s8;
+  for (int c = 0; c < 4; ++c) s8[c] = ToUnorm8(s[c]);
+  Unorm4 out;  // the exact sum of 8-bit products, rounded
+  for (int c = 0; c < 3; ++c) out[c] = ToUnorm8(float(s8[c] * s8[3] + d[c] * (255 - s8[3])) / (255.0f * 255.0f));
+  out[3] = ToUnorm8(float(s8[3] * 255 + d[3] * (255 - s8[3])) / (255.0f * 255.0f));
   return out;
 }
 
@@ -133,11 +134,11 @@ bool ProbeOutputMergerArithmetic(rhi::Device* device, OutputMergerArithmetic* ou
       !BlendProbe(device, ctx.Get(), effect.Get(), "Half", "Accumulate", rhi::DXGI_FORMAT_R16G16B16A16_FLOAT, 8,
                   &half, error))
     return false;
-  uint32_t eachTerm = 0, inFloat = 0, towardZero = 0, nearest = 0;
+  uint32_t eachTerm = 0, roundedOnce = 0, towardZero = 0, nearest = 0;
   for (uint32_t x = 0; x < kWidth; ++x) {
     const Unorm4 got{unorm[x * 4], unorm[x * 4 + 1], unorm[x * 4 + 2], unorm[x * 4 + 3]};
     eachTerm += got == OverEachTermRounded(UnormSource(x), UnormDestination(x));
-    inFloat += got == OverInFloat(UnormSource(x), UnormDestination(x));
+    roundedOnce += got == OverRoundedOnce(UnormSource(x), UnormDestination(x));
     bool zeroward = true, even = true;
     for (int c = 0; c < 4; ++c) {
       uint16_t bits;
@@ -148,8 +149,8 @@ bool ProbeOutputMergerArithmetic(rhi::Device* device, OutputMergerArithmetic* ou
     }
     towardZero += zeroward, nearest += even;
   }
-  out->unormRoundsEachTerm = eachTerm > inFloat;
-  out->unormMatches = std::max(eachTerm, inFloat);
+  out->unormRoundsEachTerm = eachTerm > roundedOnce;
+  out->unormMatches = std::max(eachTerm, roundedOnce);
   out->halfRoundsTowardZero = towardZero > nearest;
   out->halfMatches = std::max(towardZero, nearest);
   return true;

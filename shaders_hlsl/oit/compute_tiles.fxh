@@ -39,7 +39,7 @@ cbuffer ComputeTileParams {
   uint PrimitiveCapacity;  // words of the per-particle buffers (the particle system's capacity)
   uint PairCapacity;       // (tile, particle) pairs the pair buffers hold
   // This device's output merger (renderer/output_merger_probe.h), which the blends replay:
-  uint UnormRoundsEachTerm;   // 8-bit: factors to 8 bits, each product rounded (else float factors, rounded once)
+  uint UnormRoundsEachTerm;   // 8-bit: each product rounded to 8 bits (else the sum, once)
   uint HalfRoundsTowardZero;  // half: sums rounded toward zero (else to nearest even)
 };
 
@@ -154,14 +154,13 @@ uint4 MulUnorm8(uint4 x, uint4 y) {  // round(x * y / 255)
 }
 // A blend into an 8-bit UNORM target: dst' = src * srcFactor + dst * (1 - inverse),
 // all in [0, 1] (the destination factor an INV_* factor, or ONE with inverse 0); `dst`
-// holds 8-bit values. The source's values become 8-bit (the target's format) on both
-// devices measured; then either the factors too and each product is rounded (an 8-bit
-// INV_* factor is 255 minus its value's 8 bits), or the factors stay float and the sum
-// is rounded once.
+// holds 8-bit values. The source's values and the factors are taken in 8 bits (an
+// 8-bit INV_* factor is 255 minus its value's 8 bits), then each product is rounded to
+// 8 bits, or their exact sum once.
 uint4 BlendUnorm8(float4 src, float4 srcFactor, uint4 dst, float4 inverse) {
-  if (UnormRoundsEachTerm != 0)
-    return min(MulUnorm8(ToUnorm8(src), ToUnorm8(srcFactor)) + MulUnorm8(dst, 255 - ToUnorm8(inverse)), 255);
-  return ToUnorm8(ToUnorm8(src) / 255.0 * srcFactor + dst / 255.0 * (1 - inverse));
+  uint4 s = ToUnorm8(src), f = ToUnorm8(srcFactor), g = 255 - ToUnorm8(inverse);
+  if (UnormRoundsEachTerm != 0) return min(MulUnorm8(s, f) + MulUnorm8(dst, g), 255);
+  return ToUnorm8((s * f + dst * g) / 65025.0);
 }
 // x as an R16G16B16A16_FLOAT target stores it: a sum past the largest half held there
 // (the paper's weights overflow it in dense smoke), the others rounded toward zero or

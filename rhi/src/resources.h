@@ -134,7 +134,11 @@ class TextureImpl final : public DeviceChildImpl<Interface>, public TextureStora
  public:
   TextureImpl(DeviceImpl* device, const Desc& desc) : DeviceChildImpl<Interface>(device), desc_(desc) {}
   void GetType(RESOURCE_DIMENSION* dimension) override { *dimension = shape().dimension; }
-  void GetDesc(Desc* desc) override { *desc = desc_; }
+  // As D3D11: MipLevels 0 at creation ("the full chain") reads back as the count made.
+  void GetDesc(Desc* desc) override {
+    *desc = desc_;
+    desc->MipLevels = shape().mipLevels;
+  }
 
  private:
   Desc desc_;

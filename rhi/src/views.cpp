@@ -142,6 +142,15 @@ VkImageView ViewTarget::SampledImageView() {
   const VkResult result = vkCreateImageView(gpu.Device(), &info, nullptr, &view);
   usageInfo_.pNext = nullptr;
   if (result != VK_SUCCESS) return imageView_;
+  // A streaming system moves the clamp in small steps: keep the latest few variants
+  // (destroyed once the GPU is done with commands recorded so far).
+  constexpr size_t kKeptVariants = 4;
+  if (minLodViews_.size() == kKeptVariants) {
+    VkDevice vkDevice = gpu.Device();
+    VkImageView oldest = minLodViews_.front().second;
+    gpu.DeferDestroy([=] { vkDestroyImageView(vkDevice, oldest, nullptr); });
+    minLodViews_.erase(minLodViews_.begin());
+  }
   minLodViews_.emplace_back(minLod, view);
   return view;
 }

@@ -101,6 +101,13 @@ TEST_F(Texture3DTest, DescTypeAndDefaultViewsAreThoseOfAVolume) {
   TEXTURE3D_DESC got;
   texture->GetDesc(&got);
   EXPECT_EQ(std::memcmp(&got, &desc, sizeof desc), 0);
+  // MipLevels 0 asks for the full chain, which GetDesc reports: 8x4x2 has 4 levels.
+  TEXTURE3D_DESC full = desc;
+  full.MipLevels = 0;
+  ComPtr<Texture3D> chain;
+  ASSERT_EQ(device->CreateTexture3D(&full, nullptr, chain.GetAddressOf()), S_OK);
+  chain->GetDesc(&got);
+  EXPECT_EQ(got.MipLevels, 4u);
   RESOURCE_DIMENSION dimension;
   texture->GetType(&dimension);
   EXPECT_EQ(dimension, RESOURCE_DIMENSION_TEXTURE3D);

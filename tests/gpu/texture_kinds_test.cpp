@@ -239,6 +239,34 @@ TEST_F(ResourceMinLodTest, SampledLodIsClampedToTheResourceMinimum) {
   EXPECT_TRUE(Refusals().empty());
 }
 
+// Each clamp value gets its own view variant, a few kept: a clamp moving over many values
+// (as texture streaming moves it) samples the right level every time, including values
+// whose variant was dropped and made again.
+TEST_F(ResourceMinLodTest, EveryClampOfALongChainSamplesItsLevel) {
+  TEXTURE2D_DESC desc{};
+  desc.Width = desc.Height = 32;
+  desc.MipLevels = 6;
+  desc.ArraySize = 1;
+  desc.Format = DXGI_FORMAT_R8G8B8A8_UNORM;
+  desc.SampleDesc = {1, 0};
+  desc.BindFlags = BIND_SHADER_RESOURCE;
+  desc.MiscFlags = RESOURCE_MISC_RESOURCE_CLAMP;
+  std::vector<std::vector<uint32_t>> levels;
+  std::vector<SUBRESOURCE_DATA> data;
+  for (UINT mip = 0; mip < 6; ++mip) {
+    const UINT size = 32 >> mip;
+    levels.emplace_back(size * size, RGBA(40 * mip, 255 - 40 * mip, 0, 255));
+    data.push_back({levels.back().data(), size * 4, 0});
+  }
+  ASSERT_EQ(device->CreateTexture2D(&desc, data.data(), texture.ReleaseAndGetAddressOf()), S_OK);
+  ASSERT_EQ(device->CreateShaderResourceView(texture.Get(), nullptr, srv.ReleaseAndGetAddressOf()), S_OK);
+  for (UINT minLod : {1, 2, 3, 4, 5, 1, 2, 5, 0}) {
+    context->SetResourceMinLOD(texture.Get(), FLOAT(minLod));
+    EXPECT_EQ(SampleAtLod0(), RGBA(40 * minLod, 255 - 40 * minLod, 0, 255)) << "MinLOD " << minLod;
+  }
+  EXPECT_TRUE(Refusals().empty());
+}
+
 TEST_F(ResourceMinLodTest, DeferredContextsRecordTheClamp) {
   ComPtr<DeviceContext> deferred;
   ASSERT_EQ(device->CreateDeferredContext(0, deferred.GetAddressOf()), S_OK);

@@ -27,7 +27,7 @@ class ViewTarget {
   VkBufferView bufferView() const { return bufferView_; }
   // The image view a shader-resource descriptor of this view uses: imageView(), or
   // while the texture has a minimum LOD above the view's most detailed level
-  // (SetResourceMinLOD) a variant clamped to it, made once per value; VK_NULL_HANDLE
+  // (SetResourceMinLOD) a variant clamped to it (the latest few kept); VK_NULL_HANDLE
   // (reads return 0) when the clamp lies past the view's last level. Immediate context only.
   VkImageView SampledImageView();
   // Structured and raw buffer views bind as storage buffers over this range.

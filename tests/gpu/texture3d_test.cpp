@@ -219,6 +219,41 @@ TEST_F(Texture3DTest, UpdateSubresourceAndCopySubresourceRegionAddressWSlices) {
   EXPECT_TRUE(Refusals().empty());
 }
 
+// A staging volume written through Map (its DepthPitch) reaches another staging volume and
+// a default one through CopySubresourceRegion boxes with W offsets.
+TEST_F(Texture3DTest, MappedStagingVolumeCopiesWSliceBoxesToStagingAndDefaultVolumes) {
+  TEXTURE3D_DESC desc = VolumeDesc(2, 2, 3, 1, 0);
+  desc.Usage = USAGE_STAGING;
+  desc.CPUAccessFlags = CPU_ACCESS_READ | CPU_ACCESS_WRITE;
+  ComPtr<Texture3D> source, middle, target;
+  ASSERT_EQ(device->CreateTexture3D(&desc, nullptr, source.GetAddressOf()), S_OK);
+  ASSERT_EQ(device->CreateTexture3D(&desc, nullptr, middle.GetAddressOf()), S_OK);
+  MAPPED_SUBRESOURCE mapped{};
+  ASSERT_EQ(context->Map(source.Get(), 0, MAP_WRITE, 0, &mapped), S_OK);
+  ASSERT_EQ(mapped.DepthPitch, 16u);
+  for (UINT z = 0; z < 3; ++z)
+    for (UINT y = 0; y < 2; ++y)
+      for (UINT x = 0; x < 2; ++x) {
+        const uint32_t texel = TexelValue(0, x, y, z);
+        std::memcpy(static_cast<uint8_t*>(mapped.pData) + z * mapped.DepthPitch + y * mapped.RowPitch + x * 4, &texel, 4);
+      }
+  context->Unmap(source.Get(), 0);
+  // W slices 1..2 of source to W slices 0..1 of middle, then all of middle to W slice 1.. of target.
+  const BOX upper{0, 0, 1, 2, 2, 3};
+  context->CopySubresourceRegion(middle.Get(), 0, 0, 0, 0, source.Get(), 0, &upper);
+  ASSERT_EQ(device->CreateTexture3D(&kValidVolume, nullptr, target.GetAddressOf()), S_OK);
+  const std::vector<uint32_t> zeros(64, 0);
+  context->UpdateSubresource(target.Get(), 0, nullptr, zeros.data(), 16, 64);
+  const BOX firstTwo{0, 0, 0, 2, 2, 2};
+  context->CopySubresourceRegion(target.Get(), 0, 1, 1, 1, middle.Get(), 0, &firstTwo);
+  std::vector<uint32_t> expected(64, 0);
+  for (UINT z = 0; z < 2; ++z)
+    for (UINT y = 0; y < 2; ++y)
+      for (UINT x = 0; x < 2; ++x) expected[(z + 1) * 16 + (y + 1) * 4 + x + 1] = TexelValue(0, x, y, z + 1);
+  EXPECT_EQ(ReadVolume(target.Get()), expected);
+  EXPECT_TRUE(Refusals().empty());
+}
+
 TEST_F(Texture3DTest, Texture3DViewSamplesEachWSlice) {
   // 2x1x4: slice z holds its own colour; the shader samples the centre of slice x of a 4x1 target.
   const TEXTURE3D_DESC desc = VolumeDesc(2, 1, 4, 1, BIND_SHADER_RESOURCE);

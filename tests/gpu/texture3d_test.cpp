@@ -279,6 +279,40 @@ TEST_F(Texture3DTest, Texture3DViewSamplesEachWSlice) {
   for (UINT x = 0; x < 4; ++x) EXPECT_EQ(Pixel(pixels, 4, x, 0), colors[x]) << "W slice " << x;
 }
 
+// A TEXTURE3D view of levels 1.. of a 4x4x4 volume samples level 1 at its LOD 0; view
+// dimensions must match the resource's (D3D11 refuses a 2D view of a volume and the reverse).
+TEST_F(Texture3DTest, ViewFromTheMostDetailedMipSamplesThatLevelAndDimensionsMustMatch) {
+  const TEXTURE3D_DESC desc = VolumeDesc(4, 4, 4, 2, BIND_SHADER_RESOURCE);
+  ComPtr<Texture3D> texture = FilledVolume(desc);
+  ASSERT_TRUE(texture);
+  SHADER_RESOURCE_VIEW_DESC view{};
+  view.Format = desc.Format;
+  view.ViewDimension = SRV_DIMENSION_TEXTURE3D;
+  view.Texture3D = {1, UINT(-1)};
+  ComPtr<ShaderResourceView> srv;
+  ASSERT_EQ(device->CreateShaderResourceView(texture.Get(), &view, srv.GetAddressOf()), S_OK);
+  Target target = MakeRenderTarget(1, 1);
+  BindTarget(target.rtv.Get(), 1, 1);
+  context->PSSetShaderResources(0, 1, srv.GetAddressOf());
+  // Texel (1, 0, 1) of level 1 (2x2x2): Load's mip index counts from the view's first level.
+  auto ps = PS(R"(Texture3D<float4> volume : register(t0);
+    float4 main(float4 pos : SV_Position) : SV_Target { return volume.Load(int4(1, 0, 1, 0)); })");
+  DrawFullScreen(ps.Get());
+  EXPECT_EQ(Pixel(ReadTexture(target.texture.Get()), 1, 0, 0), TexelValue(1, 1, 0, 1));
+  view.Texture3D = {2, 1};
+  EXPECT_EQ(device->CreateShaderResourceView(texture.Get(), &view, srv.ReleaseAndGetAddressOf()), E_INVALIDARG);
+  EXPECT_TRUE(RefusedWith("mip or array range outside the texture"));
+  view.ViewDimension = SRV_DIMENSION_TEXTURE2D;
+  view.Texture2D = {0, 1};
+  EXPECT_EQ(device->CreateShaderResourceView(texture.Get(), &view, srv.ReleaseAndGetAddressOf()), E_INVALIDARG);
+  EXPECT_TRUE(RefusedWith("a 3D texture needs a *_TEXTURE3D ViewDimension"));
+  ComPtr<Texture2D> flat = MakeTexture(4, 4, DXGI_FORMAT_R8G8B8A8_UNORM, BIND_SHADER_RESOURCE);
+  view.ViewDimension = SRV_DIMENSION_TEXTURE3D;
+  view.Texture3D = {0, 1};
+  EXPECT_EQ(device->CreateShaderResourceView(flat.Get(), &view, srv.ReleaseAndGetAddressOf()), E_INVALIDARG);
+  EXPECT_TRUE(RefusedWith("a *_TEXTURE3D ViewDimension needs a 3D texture"));
+}
+
 TEST_F(Texture3DTest, RenderTargetViewsOfWSlicesClearAndDrawOnlyThoseSlices) {
   const TEXTURE3D_DESC desc = VolumeDesc(2, 2, 4, 1, BIND_RENDER_TARGET | BIND_SHADER_RESOURCE);
   ComPtr<Texture3D> texture;

@@ -1,6 +1,7 @@
 // Buffers and textures.
 #pragma once
 
+#include <atomic>
 #include <string>
 #include <vector>
 
@@ -91,9 +92,9 @@ class TextureStorage : public TrackedResource {
   VkExtent3D MipExtent(UINT mip) const;
   VkImageSubresourceLayers Layers(UINT subresource) const;
 
-  // SetResourceMinLOD's clamp; changed only by the immediate context.
-  FLOAT minLod() const { return minLod_; }
-  void SetMinLod(FLOAT minLod) { minLod_ = minLod; }
+  // SetResourceMinLOD's clamp: set by the immediate context, read by deferred ones too.
+  FLOAT minLod() const { return minLod_.load(std::memory_order_relaxed); }
+  void SetMinLod(FLOAT minLod) { minLod_.store(minLod, std::memory_order_relaxed); }
 
   // STAGING textures live in a buffer, subresources packed one after another.
   bool isStaging() const { return shape_.usage == USAGE_STAGING; }
@@ -126,7 +127,7 @@ class TextureStorage : public TrackedResource {
   VkDeviceMemory memory_ = VK_NULL_HANDLE;
   void* mapped_ = nullptr;
   std::vector<VkDeviceSize> subresourceOffsets_;
-  FLOAT minLod_ = 0.0f;
+  std::atomic<FLOAT> minLod_{0.0f};
 };
 
 template <class Interface, class Desc>

@@ -219,6 +219,31 @@ TEST_F(Texture3DTest, UpdateSubresourceAndCopySubresourceRegionAddressWSlices) {
   EXPECT_TRUE(Refusals().empty());
 }
 
+// A deferred context copies the bytes UpdateSubresource reads when it records the call:
+// every W slice of the box, through its depth pitch.
+TEST_F(Texture3DTest, DeferredUpdateSubresourceKeepsEveryWSliceOfTheBox) {
+  ComPtr<Texture3D> target;
+  ASSERT_EQ(device->CreateTexture3D(&kValidVolume, nullptr, target.GetAddressOf()), S_OK);
+  ComPtr<DeviceContext> deferred;
+  ASSERT_EQ(device->CreateDeferredContext(0, deferred.GetAddressOf()), S_OK);
+  std::vector<uint32_t> all(64);
+  for (UINT i = 0; i < 64; ++i) all[i] = TexelValue(0, i % 4, i / 4 % 4, i / 16);
+  deferred->UpdateSubresource(target.Get(), 0, nullptr, all.data(), 16, 64);
+  // Then W slices 1..2 of texels x 0..1, y 3 from a source with padded slices (depth pitch 32).
+  std::vector<uint32_t> box(16, kWhitePx);
+  const BOX region{0, 3, 1, 2, 4, 3};
+  deferred->UpdateSubresource(target.Get(), 0, &region, box.data(), 8, 32);
+  std::fill(box.begin(), box.end(), 0u);  // recorded: later changes to the source do not matter
+  ComPtr<CommandList> list;
+  ASSERT_EQ(deferred->FinishCommandList(FALSE, list.GetAddressOf()), S_OK);
+  context->ExecuteCommandList(list.Get(), FALSE);
+  std::vector<uint32_t> expected = all;
+  for (UINT z = 1; z < 3; ++z)
+    for (UINT x = 0; x < 2; ++x) expected[z * 16 + 12 + x] = kWhitePx;
+  EXPECT_EQ(ReadVolume(target.Get()), expected);
+  EXPECT_TRUE(Refusals().empty());
+}
+
 // A staging volume written through Map (its DepthPitch) reaches another staging volume and
 // a default one through CopySubresourceRegion boxes with W offsets.
 TEST_F(Texture3DTest, MappedStagingVolumeCopiesWSliceBoxesToStagingAndDefaultVolumes) {

@@ -164,6 +164,8 @@ class ContextImpl final : public DeviceContext {
                           UINT SrcSubresource, DXGI_FORMAT Format) override;
   void CopyStructureCount(Buffer* pDstBuffer, UINT DstAlignedByteOffset, UnorderedAccessView* pSrcView) override;
   void GenerateMips(ShaderResourceView* pShaderResourceView) override;  // texture_misc.cpp
+  void SetResourceMinLOD(Resource* pResource, FLOAT MinLOD) override;   // texture_misc.cpp
+  FLOAT GetResourceMinLOD(Resource* pResource) override;                // texture_misc.cpp
 
   void Begin(Asynchronous* pAsync) override;
   void End(Asynchronous* pAsync) override;

@@ -352,11 +352,11 @@ void ContextImpl::PushDescriptors(VkPipelineBindPoint bindPoint, const PipelineL
 void ContextImpl::WriteViewDescriptor(size_t i, const RegisterSlot& reg, const StageState& stage) {
   auto& [writes, buffers, images, texelBuffers] = descriptorScratch_;
   VkWriteDescriptorSet& write = writes[i];
-  const ViewTarget* view = nullptr;
+  ViewTarget* view = nullptr;
   if (reg.registerClass == RegisterClass::ShaderResource) {
     if (reg.slot < stage.shaderResources.size()) view = stage.shaderResources[reg.slot].Get();
   } else if (reg.slot < PS_CS_UAV_REGISTER_COUNT) {
-    const UnorderedAccessViewImpl* uav = UavsOf(reg.stage)[reg.slot].Get();
+    UnorderedAccessViewImpl* uav = UavsOf(reg.stage)[reg.slot].Get();
     if (reg.counter) {
       // The UAV's hidden counter; a UAV without one binds a null buffer.
       const BufferImpl* counter = uav ? uav->counter() : nullptr;
@@ -381,7 +381,12 @@ void ContextImpl::WriteViewDescriptor(size_t i, const RegisterSlot& reg, const S
       break;
     default:
       write.pImageInfo = &images[i];
-      images[i] = {VK_NULL_HANDLE, view ? view->imageView() : VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL};
+      // Shader-resource views follow their texture's minimum LOD (SetResourceMinLOD).
+      images[i] = {VK_NULL_HANDLE, !view ? VK_NULL_HANDLE
+                                         : reg.registerClass == RegisterClass::ShaderResource
+                                               ? view->SampledImageView()
+                                               : view->imageView(),
+                   VK_IMAGE_LAYOUT_GENERAL};
       break;
   }
 }

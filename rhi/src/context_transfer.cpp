@@ -94,27 +94,35 @@ void ContextImpl::UploadTexture(TextureStorage& texture, UINT subresource, const
                                 UINT rowPitch, UINT depthPitch) {
   // Rows are rows of 4x4 blocks for block-compressed formats (box offsets are block-aligned).
   const states::FormatInfo& format = *states::GetFormatInfo(texture.shape().format);
-  VkExtent3D full = texture.MipExtent(subresource % texture.shape().mipLevels);
   VkOffset3D origin{0, 0, 0};
-  VkExtent3D extent = full;
+  VkExtent3D extent = texture.MipExtent(subresource % texture.shape().mipLevels);
   if (box) {
     origin = {static_cast<int32_t>(box->left), static_cast<int32_t>(box->top), 0};
     extent = {box->right - box->left, box->bottom - box->top, 1};
+    // Only 3D textures have W slices; D3D11 ignores front/back for the others (0 and 1).
+    if (texture.is3D()) {
+      origin.z = static_cast<int32_t>(box->front);
+      extent.depth = box->back - box->front;
+    }
   }
   const VkDeviceSize tightRow = states::RowPitchBytes(format, extent.width);
   const UINT rows = states::RowCount(format, extent.height);
+  const auto* source = static_cast<const uint8_t*>(data);
+  auto sourceRow = [&](UINT z, UINT y) { return source + VkDeviceSize(z) * depthPitch + VkDeviceSize(y) * rowPitch; };
   if (texture.isStaging()) {
     uint8_t* dst = texture.stagingData() + texture.SubresourceOffset(subresource);
-    const UINT dstRow = texture.RowPitch(subresource);
-    for (UINT y = 0; y < rows; ++y)
-      std::memcpy(dst + (origin.y / format.blockSize + y) * dstRow + origin.x / format.blockSize * format.bytesPerElement,
-                  static_cast<const uint8_t*>(data) + VkDeviceSize(y) * rowPitch, tightRow);
+    const UINT dstRow = texture.RowPitch(subresource), dstSlice = texture.DepthPitch(subresource);
+    for (UINT z = 0; z < extent.depth; ++z)
+      for (UINT y = 0; y < rows; ++y)
+        std::memcpy(dst + VkDeviceSize(origin.z + z) * dstSlice + (origin.y / format.blockSize + y) * dstRow +
+                        origin.x / format.blockSize * format.bytesPerElement,
+                    sourceRow(z, y), tightRow);
     return;
   }
-  (void)depthPitch;
-  HostSlice staging = device_->hostSlices().Allocate(tightRow * rows, 16);
-  for (UINT y = 0; y < rows; ++y)
-    std::memcpy(staging.data + y * tightRow, static_cast<const uint8_t*>(data) + VkDeviceSize(y) * rowPitch, tightRow);
+  HostSlice staging = device_->hostSlices().Allocate(tightRow * rows * extent.depth, 16);
+  for (UINT z = 0; z < extent.depth; ++z)
+    for (UINT y = 0; y < rows; ++y)
+      std::memcpy(staging.data + (VkDeviceSize(z) * rows + y) * tightRow, sourceRow(z, y), tightRow);
   EndRendering();
   Use(texture, uses::kTransferWrite);
   FlushBarriers();
@@ -147,6 +155,12 @@ void ContextImpl::UpdateSubresource(Resource* pDstResource, UINT DstSubresource,
     return;
   }
   if (pDstBox) {
+    // D3D11: an empty box, or one reaching past the subresource, updates nothing.
+    const VkExtent3D mip = texture->MipExtent(DstSubresource % texture->shape().mipLevels);
+    if (pDstBox->left >= pDstBox->right || pDstBox->top >= pDstBox->bottom || pDstBox->right > mip.width ||
+        pDstBox->bottom > mip.height ||
+        (texture->is3D() && (pDstBox->front >= pDstBox->back || pDstBox->back > mip.depth)))
+      return;
     const VkOffset3D origin{static_cast<int32_t>(pDstBox->left), static_cast<int32_t>(pDstBox->top), 0};
     const VkExtent3D extent{pDstBox->right - pDstBox->left, pDstBox->bottom - pDstBox->top, 1};
     if (std::string reason = BlockAlignmentError(*texture, DstSubresource, origin, extent); !reason.empty()) {
@@ -175,7 +189,8 @@ void ContextImpl::ClearRenderTargetView(RenderTargetView* pRenderTargetView, con
   if (format->alphaIsOne) color.float32[3] = 1.0f;
   EndRendering();
   const VkImageSubresourceRange range = view->range();
-  if (format->vkFormat == texture.vkFormat()) {
+  // vkCmdClearColorImage would clear every W slice of a 3D mip; a TEXTURE3D view clears its own.
+  if (format->vkFormat == texture.vkFormat() && !texture.is3D()) {
     Use(texture, uses::kTransferWrite);
     FlushBarriers();
     vkCmdClearColorImage(Commands(), texture.image(), VK_IMAGE_LAYOUT_GENERAL, &color, 1, &range);
@@ -183,7 +198,8 @@ void ContextImpl::ClearRenderTargetView(RenderTargetView* pRenderTargetView, con
   }
   // A view that reinterprets a typeless texture (R8G8B8A8_UNORM of an image stored
   // as R8G8B8A8_UINT): vkCmdClearColorImage would read the colour in the image's
-  // format, a rendering pass's clear reads it in the view's.
+  // format, a rendering pass's clear reads it in the view's. W slices of a 3D
+  // texture are cleared as the view's layers.
   Use(texture, uses::kColorAttachment);
   FlushBarriers();
   VkRenderingAttachmentInfo attachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -336,7 +352,8 @@ void ContextImpl::CopyResource(Resource* pDstResource, Resource* pSrcResource) {
   TextureStorage* dst = AsTexture(pDstResource);
   TextureStorage* src = AsTexture(pSrcResource);
   if (!src || src->subresourceCount() != dst->subresourceCount() || src->shape().width != dst->shape().width ||
-      src->shape().height != dst->shape().height) {
+      src->shape().height != dst->shape().height || src->shape().depth != dst->shape().depth ||
+      src->shape().dimension != dst->shape().dimension) {
     ReportDrawError("CopyResource: source and destination must be textures of the same shape");
     return;
   }
@@ -376,7 +393,7 @@ void ContextImpl::CopyStructureCount(Buffer* pDstBuffer, UINT DstAlignedByteOffs
   }
 }
 
-void ContextImpl::CopySubresourceRegion(Resource* pDstResource, UINT DstSubresource, UINT DstX, UINT DstY, UINT,
+void ContextImpl::CopySubresourceRegion(Resource* pDstResource, UINT DstSubresource, UINT DstX, UINT DstY, UINT DstZ,
                                         Resource* pSrcResource, UINT SrcSubresource, const BOX* pSrcBox) {
   if (predicationSkips_) return;
   EndRendering();
@@ -406,13 +423,21 @@ void ContextImpl::CopySubresourceRegion(Resource* pDstResource, UINT DstSubresou
     ReportDrawError("CopySubresourceRegion: invalid texture or subresource");
     return;
   }
+  if (src->is3D() != dst->is3D()) {
+    ReportDrawError("CopySubresourceRegion: source and destination must both be 3D textures or neither");
+    return;
+  }
+  // W slices (box front/back, DstZ) exist in 3D textures only; D3D11 ignores them elsewhere.
+  const bool volume = src->is3D();
   CopyRegion region;
   region.extent = src->MipExtent(SrcSubresource % src->shape().mipLevels);
   if (pSrcBox) {
-    region.srcOffset = {static_cast<int32_t>(pSrcBox->left), static_cast<int32_t>(pSrcBox->top), 0};
-    region.extent = {pSrcBox->right - pSrcBox->left, pSrcBox->bottom - pSrcBox->top, 1};
+    region.srcOffset = {static_cast<int32_t>(pSrcBox->left), static_cast<int32_t>(pSrcBox->top),
+                        volume ? static_cast<int32_t>(pSrcBox->front) : 0};
+    region.extent = {pSrcBox->right - pSrcBox->left, pSrcBox->bottom - pSrcBox->top,
+                     volume ? pSrcBox->back - pSrcBox->front : 1};
   }
-  region.dstOffset = {static_cast<int32_t>(DstX), static_cast<int32_t>(DstY), 0};
+  region.dstOffset = {static_cast<int32_t>(DstX), static_cast<int32_t>(DstY), volume ? static_cast<int32_t>(DstZ) : 0};
   for (auto [texture, sub, offset, what] : {std::tuple{src, SrcSubresource, region.srcOffset, "pSrcBox"},
                                            std::tuple{dst, DstSubresource, region.dstOffset, "DstX, DstY"}}) {
     if (std::string reason = BlockAlignmentError(*texture, sub, offset, region.extent); !reason.empty()) {
@@ -430,23 +455,28 @@ void ContextImpl::CopySubresourceRegion(Resource* pDstResource, UINT DstSubresou
   auto bufferCopy = [&](const TextureStorage& staging, UINT sub, VkOffset3D imageOffset, VkOffset3D bufferOffset,
                         const TextureStorage& image, UINT imageSub) {
     VkBufferImageCopy copy{};
-    copy.bufferOffset = staging.SubresourceOffset(sub) + VkDeviceSize(bufferOffset.y / bs) * staging.RowPitch(sub) +
+    copy.bufferOffset = staging.SubresourceOffset(sub) + VkDeviceSize(bufferOffset.z) * staging.DepthPitch(sub) +
+                        VkDeviceSize(bufferOffset.y / bs) * staging.RowPitch(sub) +
                         VkDeviceSize(bufferOffset.x / bs) * bpe;
     copy.bufferRowLength = staging.RowPitch(sub) / bpe * bs;
+    copy.bufferImageHeight = staging.DepthPitch(sub) / staging.RowPitch(sub) * bs;  // a W slice's texel rows
     copy.imageSubresource = CopyLayers(image, imageSub);
     copy.imageOffset = imageOffset;
     copy.imageExtent = region.extent;
     return copy;
   };
   if (src->isStaging() && dst->isStaging()) {
-    for (UINT y = 0; y < states::RowCount(format, region.extent.height); ++y) {
-      VkBufferCopy row{src->SubresourceOffset(SrcSubresource) +
-                           (region.srcOffset.y / bs + y) * src->RowPitch(SrcSubresource) + region.srcOffset.x / bs * bpe,
-                       dst->SubresourceOffset(DstSubresource) +
-                           (region.dstOffset.y / bs + y) * dst->RowPitch(DstSubresource) + region.dstOffset.x / bs * bpe,
-                       states::RowPitchBytes(format, region.extent.width)};
-      vkCmdCopyBuffer(commands, src->stagingBuffer(), dst->stagingBuffer(), 1, &row);
-    }
+    auto rowOffset = [&](const TextureStorage& t, UINT sub, VkOffset3D at, UINT z, UINT y) {
+      return t.SubresourceOffset(sub) + VkDeviceSize(at.z + z) * t.DepthPitch(sub) +
+             VkDeviceSize(at.y / bs + y) * t.RowPitch(sub) + VkDeviceSize(at.x / bs) * bpe;
+    };
+    for (UINT z = 0; z < region.extent.depth; ++z)
+      for (UINT y = 0; y < states::RowCount(format, region.extent.height); ++y) {
+        VkBufferCopy row{rowOffset(*src, SrcSubresource, region.srcOffset, z, y),
+                         rowOffset(*dst, DstSubresource, region.dstOffset, z, y),
+                         states::RowPitchBytes(format, region.extent.width)};
+        vkCmdCopyBuffer(commands, src->stagingBuffer(), dst->stagingBuffer(), 1, &row);
+      }
   } else if (dst->isStaging()) {
     VkBufferImageCopy copy = bufferCopy(*dst, DstSubresource, region.srcOffset, region.dstOffset, *src, SrcSubresource);
     vkCmdCopyImageToBuffer(commands, src->image(), VK_IMAGE_LAYOUT_GENERAL, dst->stagingBuffer(), 1, &copy);

@@ -450,7 +450,7 @@ class DeferredContext final : public DeviceChildImpl<DeviceContext> {
   }
   void UpdateSubresource(Resource* dst, UINT sub, const BOX* box, const void* data, UINT rowPitch,
                          UINT depthPitch) override {
-    auto bytes = std::make_shared<std::vector<uint8_t>>(UpdateSize(dst, sub, box, rowPitch));
+    auto bytes = std::make_shared<std::vector<uint8_t>>(UpdateSize(dst, sub, box, rowPitch, depthPitch));
     if (data) std::memcpy(bytes->data(), data, bytes->size());
     ComPtr<Resource> held(dst);
     const bool hasBox = box != nullptr;
@@ -485,6 +485,12 @@ class DeferredContext final : public DeviceChildImpl<DeviceContext> {
     ComPtr<ShaderResourceView> held(srv);
     Record([=](DeviceContext* c) { c->GenerateMips(held.Get()); });
   }
+  void SetResourceMinLOD(Resource* resource, FLOAT minLod) override {
+    ComPtr<Resource> held(resource);
+    Record([=](DeviceContext* c) { c->SetResourceMinLOD(held.Get(), minLod); });
+  }
+  // The clamp belongs to the resource: what the immediate context last set.
+  FLOAT GetResourceMinLOD(Resource* resource) override { return device().context().GetResourceMinLOD(resource); }
 
   // Queries and predication
   void Begin(Asynchronous* async) override {
@@ -573,8 +579,8 @@ class DeferredContext final : public DeviceChildImpl<DeviceContext> {
   }
 
   // The bytes UpdateSubresource reads from pSrcData: the box (or the whole
-  // subresource) of a buffer, or rows of a 1D / 2D texture (the last one unpadded).
-  static size_t UpdateSize(Resource* dst, UINT sub, const BOX* box, UINT rowPitch) {
+  // subresource) of a buffer, or rows of W slices of a texture (the last of each unpadded).
+  static size_t UpdateSize(Resource* dst, UINT sub, const BOX* box, UINT rowPitch, UINT depthPitch) {
     RESOURCE_DIMENSION dimension = RESOURCE_DIMENSION_UNKNOWN;
     if (dst) dst->GetType(&dimension);
     if (dimension == RESOURCE_DIMENSION_BUFFER) {
@@ -582,9 +588,13 @@ class DeferredContext final : public DeviceChildImpl<DeviceContext> {
       static_cast<Buffer*>(dst)->GetDesc(&desc);
       return box ? box->right - box->left : desc.ByteWidth;
     }
-    UINT width = 1, height = 1, mips = 1;
+    UINT width = 1, height = 1, depth = 1, mips = 1;
     DXGI_FORMAT format = DXGI_FORMAT_UNKNOWN;
-    if (dimension == RESOURCE_DIMENSION_TEXTURE2D) {
+    if (dimension == RESOURCE_DIMENSION_TEXTURE3D) {
+      TEXTURE3D_DESC desc;
+      static_cast<Texture3D*>(dst)->GetDesc(&desc);
+      width = desc.Width, height = desc.Height, depth = desc.Depth, mips = desc.MipLevels, format = desc.Format;
+    } else if (dimension == RESOURCE_DIMENSION_TEXTURE2D) {
       TEXTURE2D_DESC desc;
       static_cast<Texture2D*>(dst)->GetDesc(&desc);
       width = desc.Width, height = desc.Height, mips = desc.MipLevels, format = desc.Format;
@@ -598,7 +608,12 @@ class DeferredContext final : public DeviceChildImpl<DeviceContext> {
     const UINT mip = mips ? sub % mips : 0;
     width = box ? box->right - box->left : std::max(1u, width >> mip);
     height = box ? box->bottom - box->top : std::max(1u, height >> mip);
-    return size_t(height - 1) * rowPitch + size_t(width) * BitsPerPixel(format) / 8;
+    depth = dimension != RESOURCE_DIMENSION_TEXTURE3D ? 1 : box ? box->back - box->front : std::max(1u, depth >> mip);
+    // Rows count 4x4 blocks in block-compressed formats.
+    UINT64 tightRow = 0, tightSlice = 0;
+    if (!ComputePitch(format, width, height, &tightRow, &tightSlice) || tightRow == 0) return 0;
+    const UINT64 rows = tightSlice / tightRow;
+    return size_t(depth - 1) * depthPitch + size_t(rows - 1) * rowPitch + size_t(tightRow);
   }
 
   ContextState state_;

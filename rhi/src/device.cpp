@@ -105,6 +105,18 @@ HRESULT DeviceImpl::CreateTexture2D(const TEXTURE2D_DESC* pDesc, const SUBRESOUR
   return hr;
 }
 
+HRESULT DeviceImpl::CreateTexture3D(const TEXTURE3D_DESC* pDesc, const SUBRESOURCE_DATA* pInitialData,
+                                    Texture3D** ppTexture3D) {
+  if (!pDesc) return gpu_->Refuse("CreateTexture3D: pDesc is NULL");
+  TextureShape shape{RESOURCE_DIMENSION_TEXTURE3D, pDesc->Width, pDesc->Height, pDesc->MipLevels, 1, 1,
+                     pDesc->Format, pDesc->Usage, pDesc->BindFlags, pDesc->CPUAccessFlags, pDesc->MiscFlags};
+  shape.depth = pDesc->Depth;
+  Texture3DImpl* texture = nullptr;
+  HRESULT hr = CreateTexture(this, *pDesc, shape, pInitialData, &texture);
+  if (SUCCEEDED(hr)) *ppTexture3D = texture;
+  return hr;
+}
+
 HRESULT DeviceImpl::CheckMultisampleQualityLevels(DXGI_FORMAT Format, UINT SampleCount, UINT* pNumQualityLevels) {
   if (!pNumQualityLevels) return gpu_->Refuse("CheckMultisampleQualityLevels: pNumQualityLevels is NULL");
   *pNumQualityLevels = 0;

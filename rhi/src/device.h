@@ -28,6 +28,8 @@ class DeviceImpl final : public Device {
                           Texture1D** ppTexture1D) override;
   HRESULT CreateTexture2D(const TEXTURE2D_DESC* pDesc, const SUBRESOURCE_DATA* pInitialData,
                           Texture2D** ppTexture2D) override;
+  HRESULT CreateTexture3D(const TEXTURE3D_DESC* pDesc, const SUBRESOURCE_DATA* pInitialData,
+                          Texture3D** ppTexture3D) override;
   HRESULT CreateShaderResourceView(Resource* pResource, const SHADER_RESOURCE_VIEW_DESC* pDesc,
                                    ShaderResourceView** ppSRView) override;
   HRESULT CreateUnorderedAccessView(Resource* pResource, const UNORDERED_ACCESS_VIEW_DESC* pDesc,

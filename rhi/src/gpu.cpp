@@ -214,6 +214,7 @@ HRESULT Gpu::CreateLogicalDevice() {
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DEPTH_CLIP_ENABLE_FEATURES_EXT};
   VkPhysicalDeviceVertexAttributeDivisorFeaturesEXT divisor{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VERTEX_ATTRIBUTE_DIVISOR_FEATURES_EXT};
+  VkPhysicalDeviceImageViewMinLodFeaturesEXT minLod{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_IMAGE_VIEW_MIN_LOD_FEATURES_EXT};
   VkPhysicalDeviceVulkan13Features v13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
   VkPhysicalDeviceVulkan12Features v12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
   VkPhysicalDeviceVulkan11Features v11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
@@ -235,6 +236,7 @@ HRESULT Gpu::CreateLogicalDevice() {
   chainIf(enableIfPresent(VK_EXT_CUSTOM_BORDER_COLOR_EXTENSION_NAME), border);
   chainIf(enableIfPresent(VK_EXT_DEPTH_CLIP_ENABLE_EXTENSION_NAME), depthClip);
   chainIf(enableIfPresent(VK_EXT_VERTEX_ATTRIBUTE_DIVISOR_EXTENSION_NAME), divisor);
+  chainIf(enableIfPresent(VK_EXT_IMAGE_VIEW_MIN_LOD_EXTENSION_NAME), minLod);
   vkGetPhysicalDeviceFeatures2(physical_, &supported);
 
   if (!v13.dynamicRendering || !v13.synchronization2) {
@@ -260,6 +262,7 @@ HRESULT Gpu::CreateLogicalDevice() {
   caps_.fragmentStoresAndAtomics = supported.features.fragmentStoresAndAtomics;
   caps_.vertexPipelineStoresAndAtomics = supported.features.vertexPipelineStoresAndAtomics;
   caps_.sampleRateShading = supported.features.sampleRateShading;
+  caps_.imageViewMinLod = minLod.minLod;
 
   if (caps_.transformFeedback) {
     VkPhysicalDeviceTransformFeedbackPropertiesEXT xfbProps{

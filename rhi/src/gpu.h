@@ -37,6 +37,7 @@ struct GpuCapabilities {
   bool fragmentStoresAndAtomics = false;        // pixel-shader UAVs
   bool vertexPipelineStoresAndAtomics = false;  // UAVs in VS, HS, DS, GS
   bool sampleRateShading = false;  // SV_SampleIndex / per-sample pixel shaders
+  bool imageViewMinLod = false;    // VK_EXT_image_view_min_lod: SetResourceMinLOD's fractional clamp
   float timestampPeriodNs = 1.0f;
   VkPhysicalDeviceLimits limits{};
 };

@@ -200,19 +200,36 @@ TextureStorage* AsTexture(Resource* resource) { return dynamic_cast<TextureStora
 
 namespace {
 
-UINT FullMipCount(UINT width, UINT height) { return std::bit_width(std::max(width, height)); }
+UINT FullMipCount(const TextureShape& s) { return std::bit_width(std::max({s.width, s.height, s.depth})); }
+
+// D3D11's size limits: D3D11_REQ_TEXTURE1D_U_DIMENSION and _TEXTURE2D_U_OR_V_DIMENSION
+// (16384), _TEXTURE3D_U_V_OR_W_DIMENSION (2048), _TEXTURE2D_ARRAY_AXIS_DIMENSION (2048).
+std::string CheckSize(const TextureShape& s) {
+  if (s.dimension == RESOURCE_DIMENSION_TEXTURE3D) {
+    if (s.width == 0 || s.height == 0 || s.depth == 0 || s.width > 2048 || s.height > 2048 || s.depth > 2048)
+      return "size " + std::to_string(s.width) + "x" + std::to_string(s.height) + "x" + std::to_string(s.depth) +
+             " is outside 1..2048 (D3D11_REQ_TEXTURE3D_U_V_OR_W_DIMENSION)";
+    return {};
+  }
+  if (s.width == 0 || s.height == 0 || s.width > 16384 || s.height > 16384)
+    return "size " + std::to_string(s.width) + "x" + std::to_string(s.height) + " is outside 1..16384";
+  if (s.arraySize == 0 || s.arraySize > 2048) return "ArraySize " + std::to_string(s.arraySize) + " is outside 1..2048";
+  return {};
+}
 
 std::string ValidateTextureShape(const TextureShape& s, const SUBRESOURCE_DATA* initialData, const char* call) {
   const std::string where = std::string(call) + ": ";
   const auto* format = states::GetFormatInfo(s.format);
   if (!format) return where + "Format " + std::to_string(s.format) + " is not supported";
-  if (s.width == 0 || s.height == 0 || s.width > 16384 || s.height > 16384)
-    return where + "size " + std::to_string(s.width) + "x" + std::to_string(s.height) + " is outside 1..16384";
-  if (s.arraySize == 0 || s.arraySize > 2048)
-    return where + "ArraySize " + std::to_string(s.arraySize) + " is outside 1..2048";
-  if (s.mipLevels > FullMipCount(s.width, s.height))
+  if (std::string reason = CheckSize(s); !reason.empty()) return where + reason;
+  if (s.mipLevels > FullMipCount(s))
     return where + "MipLevels " + std::to_string(s.mipLevels) + " exceeds the full chain of " +
-           std::to_string(FullMipCount(s.width, s.height));
+           std::to_string(FullMipCount(s));
+  // D3D11: volume textures cannot be depth-stencil targets, nor be stored in a depth format.
+  if (s.dimension == RESOURCE_DIMENSION_TEXTURE3D && (s.bindFlags & BIND_DEPTH_STENCIL))
+    return where + "a 3D texture cannot have BIND_DEPTH_STENCIL";
+  if (s.dimension == RESOURCE_DIMENSION_TEXTURE3D && format->isDepth)
+    return where + std::string(format->name) + " is a depth format, which 3D textures cannot have";
   if (!std::has_single_bit(s.samples) || s.samples > 32)
     return where + "SampleDesc.Count " + std::to_string(s.samples) + " is not a power of two up to 32";
   if (s.samples > 1 && s.mipLevels != 1) return where + "multisampled textures must have MipLevels 1";
@@ -281,8 +298,8 @@ TextureStorage::~TextureStorage() {
 HRESULT TextureStorage::Initialize(DeviceImpl& device, const TextureShape& shape,
                                    const SUBRESOURCE_DATA* initialData) {
   shape_ = shape;
-  if (shape_.mipLevels == 0) shape_.mipLevels = FullMipCount(shape_.width, shape_.height);
-  const char* call = shape.dimension == RESOURCE_DIMENSION_TEXTURE1D ? "CreateTexture1D" : "CreateTexture2D";
+  if (shape_.mipLevels == 0) shape_.mipLevels = FullMipCount(shape_);
+  const char* call = CreateCallName(shape.dimension);
   if (std::string reason = ValidateTextureShape(shape_, initialData, call); !reason.empty())
     return device.gpu().Refuse(reason);
   const auto* format = states::GetFormatInfo(shape_.format);
@@ -328,9 +345,11 @@ std::vector<VkFormat> TextureStorage::FamilyViewFormats() const {
 HRESULT TextureStorage::CreateImage(DeviceImpl& device) {
   Gpu& gpu = device.gpu();
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-  info.imageType = shape_.dimension == RESOURCE_DIMENSION_TEXTURE1D ? VK_IMAGE_TYPE_1D : VK_IMAGE_TYPE_2D;
+  info.imageType = shape_.dimension == RESOURCE_DIMENSION_TEXTURE1D   ? VK_IMAGE_TYPE_1D
+                   : shape_.dimension == RESOURCE_DIMENSION_TEXTURE3D ? VK_IMAGE_TYPE_3D
+                                                                      : VK_IMAGE_TYPE_2D;
   info.format = vkFormat_;
-  info.extent = {shape_.width, shape_.height, 1};
+  info.extent = {shape_.width, shape_.height, shape_.depth};
   info.mipLevels = shape_.mipLevels;
   info.arrayLayers = shape_.arraySize;
   info.samples = static_cast<VkSampleCountFlagBits>(shape_.samples);
@@ -338,6 +357,8 @@ HRESULT TextureStorage::CreateImage(DeviceImpl& device) {
   info.usage = ImageUsage(shape_, aspects_ & VK_IMAGE_ASPECT_DEPTH_BIT);
   info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   if (shape_.miscFlags & RESOURCE_MISC_TEXTURECUBE) info.flags |= VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT;
+  // A 3D render-target view is a 2D-array view whose layers are W slices.
+  if (is3D() && (shape_.bindFlags & BIND_RENDER_TARGET)) info.flags |= VK_IMAGE_CREATE_2D_ARRAY_COMPATIBLE_BIT;
   // Only views of typeless colour resources reinterpret the format (D3D11's
   // IsViewCompatible rule); listing the family lets drivers keep render-target
   // compression, which an unrestricted MUTABLE_FORMAT image may lose.
@@ -394,7 +415,7 @@ std::string TextureStorage::CheckSampleCount(const Gpu& gpu, const VkImageCreate
   // Vulkan decides per format, usage and flags, so the image's own are asked.
   const VkSampleCountFlags counts = gpu.ImageSampleCounts(info);
   if (counts & info.samples) return {};
-  const char* call = shape_.dimension == RESOURCE_DIMENSION_TEXTURE1D ? "CreateTexture1D" : "CreateTexture2D";
+  const char* call = CreateCallName(shape_.dimension);
   if (counts == 0)
     return std::string(call) + ": " + gpu.AdapterName() + " cannot create a " + states::FormatName(shape_.format) +
            " texture with BindFlags " + Hex(shape_.bindFlags) + " at any sample count";
@@ -427,7 +448,7 @@ HRESULT TextureStorage::CreateStagingBuffer(DeviceImpl& device) {
   VkDeviceSize total = 0;
   for (UINT sub = 0; sub < subresourceCount(); ++sub) {
     subresourceOffsets_.push_back(total);
-    total += (VkDeviceSize(DepthPitch(sub)) + 15) / 16 * 16;
+    total += (SubresourceSize(sub) + 15) / 16 * 16;
   }
   VkResult result = CreateBoundBuffer(device.gpu(), total,
                                       VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -439,7 +460,15 @@ HRESULT TextureStorage::CreateStagingBuffer(DeviceImpl& device) {
 }
 
 VkExtent3D TextureStorage::MipExtent(UINT mip) const {
-  return {std::max(1u, shape_.width >> mip), std::max(1u, shape_.height >> mip), 1};
+  return {std::max(1u, shape_.width >> mip), std::max(1u, shape_.height >> mip), std::max(1u, shape_.depth >> mip)};
+}
+
+const char* CreateCallName(RESOURCE_DIMENSION dimension) {
+  switch (dimension) {
+    case RESOURCE_DIMENSION_TEXTURE1D: return "CreateTexture1D";
+    case RESOURCE_DIMENSION_TEXTURE3D: return "CreateTexture3D";
+    default: return "CreateTexture2D";
+  }
 }
 
 VkImageSubresourceLayers TextureStorage::Layers(UINT subresource) const {

@@ -1,6 +1,7 @@
 // Buffers and textures.
 #pragma once
 
+#include <atomic>
 #include <string>
 #include <vector>
 
@@ -57,7 +58,7 @@ class BufferImpl final : public DeviceChildImpl<Buffer>, public TrackedResource 
   std::unique_ptr<StreamOutCounter> soCounter_;
 };
 
-// What Texture1D and Texture2D have in common.
+// What Texture1D, Texture2D and Texture3D have in common.
 struct TextureShape {
   RESOURCE_DIMENSION dimension = RESOURCE_DIMENSION_TEXTURE2D;
   UINT width = 1, height = 1, mipLevels = 1, arraySize = 1, samples = 1;
@@ -65,7 +66,11 @@ struct TextureShape {
   USAGE usage = USAGE_DEFAULT;
   UINT bindFlags = 0, cpuAccessFlags = 0, miscFlags = 0;
   UINT sampleQuality = 0;  // DXGI_SAMPLE_DESC::Quality
+  UINT depth = 1;          // TEXTURE3D_DESC::Depth (3D textures have arraySize 1)
 };
+
+// "CreateTexture1D", "CreateTexture2D" or "CreateTexture3D", for messages.
+const char* CreateCallName(RESOURCE_DIMENSION dimension);
 
 // The sample counts a render target (a depth-stencil for depth formats) of
 // `format` may have on `gpu`, as a VkSampleCountFlags mask; 0 for formats that
@@ -82,15 +87,25 @@ class TextureStorage : public TrackedResource {
   VkFormat vkFormat() const { return vkFormat_; }
   VkImageAspectFlags aspects() const { return aspects_; }
   UINT subresourceCount() const { return shape_.mipLevels * shape_.arraySize; }
+  bool is3D() const { return shape_.dimension == RESOURCE_DIMENSION_TEXTURE3D; }
+  // Width, height and (3D textures) depth of a mip level.
   VkExtent3D MipExtent(UINT mip) const;
   VkImageSubresourceLayers Layers(UINT subresource) const;
+
+  // SetResourceMinLOD's clamp: set by the immediate context, read by deferred ones too.
+  FLOAT minLod() const { return minLod_.load(std::memory_order_relaxed); }
+  void SetMinLod(FLOAT minLod) { minLod_.store(minLod, std::memory_order_relaxed); }
 
   // STAGING textures live in a buffer, subresources packed one after another.
   bool isStaging() const { return shape_.usage == USAGE_STAGING; }
   VkBuffer stagingBuffer() const { return stagingBuffer_; }
   VkDeviceSize SubresourceOffset(UINT subresource) const { return subresourceOffsets_[subresource]; }
   UINT RowPitch(UINT subresource) const;
+  // Bytes of one depth slice (of the whole subresource for 1D and 2D textures).
   UINT DepthPitch(UINT subresource) const;
+  VkDeviceSize SubresourceSize(UINT subresource) const {
+    return VkDeviceSize(DepthPitch(subresource)) * MipExtent(subresource % shape_.mipLevels).depth;
+  }
   uint8_t* stagingData() const { return static_cast<uint8_t*>(mapped_); }
 
  private:
@@ -112,6 +127,7 @@ class TextureStorage : public TrackedResource {
   VkDeviceMemory memory_ = VK_NULL_HANDLE;
   void* mapped_ = nullptr;
   std::vector<VkDeviceSize> subresourceOffsets_;
+  std::atomic<FLOAT> minLod_{0.0f};
 };
 
 template <class Interface, class Desc>
@@ -119,7 +135,11 @@ class TextureImpl final : public DeviceChildImpl<Interface>, public TextureStora
  public:
   TextureImpl(DeviceImpl* device, const Desc& desc) : DeviceChildImpl<Interface>(device), desc_(desc) {}
   void GetType(RESOURCE_DIMENSION* dimension) override { *dimension = shape().dimension; }
-  void GetDesc(Desc* desc) override { *desc = desc_; }
+  // As D3D11: MipLevels 0 at creation ("the full chain") reads back as the count made.
+  void GetDesc(Desc* desc) override {
+    *desc = desc_;
+    desc->MipLevels = shape().mipLevels;
+  }
 
  private:
   Desc desc_;
@@ -127,6 +147,7 @@ class TextureImpl final : public DeviceChildImpl<Interface>, public TextureStora
 
 using Texture1DImpl = TextureImpl<Texture1D, TEXTURE1D_DESC>;
 using Texture2DImpl = TextureImpl<Texture2D, TEXTURE2D_DESC>;
+using Texture3DImpl = TextureImpl<Texture3D, TEXTURE3D_DESC>;
 
 // D3D11's rules for RESOURCE_MISC_TEXTURECUBE and RESOURCE_MISC_GENERATE_MIPS
 // (texture_misc.cpp): empty, or the reason prefixed with `where`.

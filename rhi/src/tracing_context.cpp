@@ -274,6 +274,11 @@ class TracingContext final : public DeviceContext {
     Record("GenerateMips", Obj(v));
     inner_->GenerateMips(v);
   }
+  void SetResourceMinLOD(Resource* r, FLOAT minLod) override {
+    Record("SetResourceMinLOD", Obj(r) + Format(", %g", double(minLod)));
+    inner_->SetResourceMinLOD(r, minLod);
+  }
+  FLOAT GetResourceMinLOD(Resource* r) override { return inner_->GetResourceMinLOD(r); }
 
   void SetPredication(Predicate* p, BOOL value) override {
     Record("SetPredication", Format("%s, %d", Obj(p).c_str(), value));

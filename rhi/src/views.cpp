@@ -1,5 +1,7 @@
 #include "views.h"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "states/formats.h"
@@ -12,9 +14,11 @@ ViewTarget::~ViewTarget() {
   VkDevice vkDevice = device_->gpu().Device();
   VkImageView imageView = imageView_;
   VkBufferView bufferView = bufferView_;
+  std::vector<std::pair<FLOAT, VkImageView>> variants = std::move(minLodViews_);
   device_->gpu().DeferDestroy([=] {
     vkDestroyImageView(vkDevice, imageView, nullptr);
     vkDestroyBufferView(vkDevice, bufferView, nullptr);
+    for (const auto& variant : variants) vkDestroyImageView(vkDevice, variant.second, nullptr);
   });
 }
 
@@ -76,30 +80,79 @@ HRESULT ViewTarget::InitTexture(DeviceImpl& device, Resource* resource, DXGI_FOR
     return gpu.Refuse(std::string(call) + ": view format " + info->name + " cannot view a resource of format " +
                       states::FormatName(shape.format) +
                       " (a typed resource takes only its own format, a typeless one the members of its family)");
-  if (range.baseMipLevel + range.levelCount > shape.mipLevels ||
-      range.baseArrayLayer + range.layerCount > shape.arraySize)
-    return gpu.Refuse(std::string(call) + ": mip or array range outside the texture");
+  // The layers of a 2D-array view of a 3D texture (a TEXTURE3D render-target view) are its W slices.
+  const UINT layers = type == VK_IMAGE_VIEW_TYPE_2D_ARRAY && texture->is3D()
+                          ? texture->MipExtent(std::min(range.baseMipLevel, shape.mipLevels - 1)).depth
+                          : shape.arraySize;
+  if (range.baseMipLevel >= shape.mipLevels || range.levelCount == 0 ||
+      range.levelCount > shape.mipLevels - range.baseMipLevel || range.baseArrayLayer >= layers ||
+      range.layerCount == 0 || range.layerCount > layers - range.baseArrayLayer)
+    return gpu.Refuse(std::string(call) + ": mip or array range outside the texture (mips " +
+                      std::to_string(range.baseMipLevel) + "+" + std::to_string(range.levelCount) + " of " +
+                      std::to_string(shape.mipLevels) + ", slices " + std::to_string(range.baseArrayLayer) + "+" +
+                      std::to_string(range.layerCount) + " of " + std::to_string(layers) + ")");
   device_ = &device;
   Hold(resource);
   texture_ = texture;
   format_ = format;
   range_ = range;
 
-  VkImageViewUsageCreateInfo usageInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_USAGE_CREATE_INFO};
-  usageInfo.usage = usage;
-  VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-  viewInfo.pNext = &usageInfo;
-  viewInfo.image = texture->image();
-  viewInfo.viewType = type;
+  usageInfo_ = {VK_STRUCTURE_TYPE_IMAGE_VIEW_USAGE_CREATE_INFO};
+  usageInfo_.usage = usage;
+  viewInfo_ = {VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  viewInfo_.image = texture->image();
+  viewInfo_.viewType = type;
   // Depth images can only be viewed in their own format; colour views may
   // reinterpret within the typeless family.
-  viewInfo.format = (texture->aspects() & VK_IMAGE_ASPECT_DEPTH_BIT)
+  viewInfo_.format = (texture->aspects() & VK_IMAGE_ASPECT_DEPTH_BIT)
                         ? texture->vkFormat()
                         : info->vkFormat;
-  viewInfo.components = states::ToVkComponentMapping(info->swizzle);
-  viewInfo.subresourceRange = range;
+  viewInfo_.components = states::ToVkComponentMapping(info->swizzle);
+  viewInfo_.subresourceRange = range;
+  VkImageViewCreateInfo viewInfo = viewInfo_;
+  viewInfo.pNext = &usageInfo_;
   VkResult result = vkCreateImageView(gpu.Device(), &viewInfo, nullptr, &imageView_);
   return ToHresult(result);
+}
+
+VkImageView ViewTarget::SampledImageView() {
+  if (!texture_ || texture_->minLod() <= FLOAT(range_.baseMipLevel)) return imageView_;
+  const FLOAT minLod = texture_->minLod();
+  const UINT lastLevel = range_.baseMipLevel + range_.levelCount - 1;
+  if (minLod > FLOAT(lastLevel)) return VK_NULL_HANDLE;  // D3D11: an empty set of levels reads as out of bounds
+  for (const auto& [lod, view] : minLodViews_)
+    if (lod == minLod) return view;
+  Gpu& gpu = device_->gpu();
+  VkImageViewCreateInfo info = viewInfo_;
+  info.pNext = &usageInfo_;
+  VkImageViewMinLodCreateInfoEXT minLodInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_MIN_LOD_CREATE_INFO_EXT};
+  if (gpu.Caps().imageViewMinLod) {
+    // The clamp is in the image's levels, as D3D11's MinLOD is in the resource's.
+    minLodInfo.minLod = minLod;
+    usageInfo_.pNext = &minLodInfo;
+  } else {
+    // Without VK_EXT_image_view_min_lod the view starts at the first level the clamp
+    // allows: whole levels only (a fractional MinLOD rounds up; the levels' sizes and
+    // Load's mip indices then count from that level).
+    const UINT first = UINT(std::ceil(minLod));
+    info.subresourceRange.baseMipLevel = first;
+    info.subresourceRange.levelCount = lastLevel + 1 - first;
+  }
+  VkImageView view = VK_NULL_HANDLE;
+  const VkResult result = vkCreateImageView(gpu.Device(), &info, nullptr, &view);
+  usageInfo_.pNext = nullptr;
+  if (result != VK_SUCCESS) return imageView_;
+  // A streaming system moves the clamp in small steps: keep the latest few variants
+  // (destroyed once the GPU is done with commands recorded so far).
+  constexpr size_t kKeptVariants = 4;
+  if (minLodViews_.size() == kKeptVariants) {
+    VkDevice vkDevice = gpu.Device();
+    VkImageView oldest = minLodViews_.front().second;
+    gpu.DeferDestroy([=] { vkDestroyImageView(vkDevice, oldest, nullptr); });
+    minLodViews_.erase(minLodViews_.begin());
+  }
+  minLodViews_.emplace_back(minLod, view);
+  return view;
 }
 
 HRESULT ViewTarget::InitBuffer(DeviceImpl& device, Resource* resource, DXGI_FORMAT format, UINT firstElement,
@@ -143,6 +196,8 @@ HRESULT ViewTarget::InitBuffer(DeviceImpl& device, Resource* resource, DXGI_FORM
 namespace {
 
 VkImageViewType ViewType(UINT dimension, bool isArray, bool cube) {
+  // A 3D texture's W slices are the layers of its render-target views' 2D arrays.
+  if (dimension == RESOURCE_DIMENSION_TEXTURE3D) return isArray ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_3D;
   if (cube) return isArray ? VK_IMAGE_VIEW_TYPE_CUBE_ARRAY : VK_IMAGE_VIEW_TYPE_CUBE;
   if (dimension == RESOURCE_DIMENSION_TEXTURE1D) return isArray ? VK_IMAGE_VIEW_TYPE_1D_ARRAY : VK_IMAGE_VIEW_TYPE_1D;
   return isArray ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
@@ -159,6 +214,21 @@ VkImageAspectFlags ReadAspect(const TextureStorage& texture, DXGI_FORMAT format)
   const bool stencil = info && info->hasStencil && !info->isDepth;
   return stencil && (texture.aspects() & VK_IMAGE_ASPECT_STENCIL_BIT) ? VK_IMAGE_ASPECT_STENCIL_BIT
                                                                        : ColorOrDepth(texture);
+}
+
+// D3D11: a TEXTURE3D view dimension is for 3D textures, and 3D textures take no other.
+std::string CheckVolumeDimension(const TextureStorage* texture, bool volumeView, const char* call) {
+  if (!texture || texture->is3D() == volumeView) return {};
+  return std::string(call) + ": " +
+         (volumeView ? "a *_TEXTURE3D ViewDimension needs a 3D texture"
+                     : "a 3D texture needs a *_TEXTURE3D ViewDimension");
+}
+
+// D3D11's WSize -1: every W slice of the mip from FirstWSlice on.
+UINT WSliceCount(const TextureStorage* texture, UINT mip, UINT firstWSlice, UINT wSize) {
+  if (wSize != UINT(-1) || !texture) return wSize;
+  const UINT depth = texture->MipExtent(std::min(mip, texture->shape().mipLevels - 1)).depth;
+  return firstWSlice < depth ? depth - firstWSlice : 0;
 }
 
 }  // namespace
@@ -210,6 +280,10 @@ HRESULT ShaderResourceViewImpl::Initialize(Resource* resource) {
       range.layerCount = d.Texture2DMSArray.ArraySize;
       isArray = true;
       break;
+    case SRV_DIMENSION_TEXTURE3D:
+      range.baseMipLevel = d.Texture3D.MostDetailedMip;
+      range.levelCount = d.Texture3D.MipLevels;
+      break;
     case SRV_DIMENSION_TEXTURECUBE:
       range.baseMipLevel = d.TextureCube.MostDetailedMip;
       range.levelCount = d.TextureCube.MipLevels;
@@ -227,8 +301,13 @@ HRESULT ShaderResourceViewImpl::Initialize(Resource* resource) {
       return dev.gpu().Refuse("CreateShaderResourceView: ViewDimension " + std::to_string(d.ViewDimension) +
                               " is not supported");
   }
+  if (std::string reason =
+          CheckVolumeDimension(texture, d.ViewDimension == SRV_DIMENSION_TEXTURE3D, "CreateShaderResourceView");
+      !reason.empty())
+    return dev.gpu().Refuse(reason);
   // D3D11: MipLevels -1 means "all remaining".
-  if (range.levelCount == UINT(-1)) range.levelCount = texture->shape().mipLevels - range.baseMipLevel;
+  if (range.levelCount == UINT(-1) && range.baseMipLevel < texture->shape().mipLevels)
+    range.levelCount = texture->shape().mipLevels - range.baseMipLevel;
   if (cube && !(texture->shape().miscFlags & RESOURCE_MISC_TEXTURECUBE))
     return dev.gpu().Refuse("CreateShaderResourceView: a TEXTURECUBE or TEXTURECUBEARRAY view needs a texture "
                             "created with RESOURCE_MISC_TEXTURECUBE");
@@ -260,11 +339,23 @@ HRESULT RenderTargetViewImpl::Initialize(Resource* resource) {
       range.layerCount = d.Texture2DMSArray.ArraySize;
       isArray = true;
       break;
+    case RTV_DIMENSION_TEXTURE3D:
+      // W slices as array layers (SV_RenderTargetArrayIndex picks one).
+      range.baseMipLevel = d.Texture3D.MipSlice;
+      range.baseArrayLayer = d.Texture3D.FirstWSlice;
+      range.layerCount =
+          WSliceCount(AsTexture(resource), d.Texture3D.MipSlice, d.Texture3D.FirstWSlice, d.Texture3D.WSize);
+      isArray = true;
+      break;
     default:
       return device().gpu().Refuse("CreateRenderTargetView: ViewDimension " + std::to_string(d.ViewDimension) +
                                    " is not supported");
   }
   TextureStorage* texture = AsTexture(resource);
+  if (std::string reason =
+          CheckVolumeDimension(texture, d.ViewDimension == RTV_DIMENSION_TEXTURE3D, "CreateRenderTargetView");
+      !reason.empty())
+    return device().gpu().Refuse(reason);
   if (texture && !(texture->shape().bindFlags & BIND_RENDER_TARGET))
     return device().gpu().Refuse("CreateRenderTargetView: the texture lacks BIND_RENDER_TARGET");
   const bool multisampledView =
@@ -335,7 +426,10 @@ SHADER_RESOURCE_VIEW_DESC DefaultDesc(Resource* resource, const SHADER_RESOURCE_
   }
   const TextureShape& s = AsTexture(resource)->shape();
   d.Format = s.format;
-  if (s.samples > 1) {
+  if (s.dimension == RESOURCE_DIMENSION_TEXTURE3D) {
+    d.ViewDimension = SRV_DIMENSION_TEXTURE3D;
+    d.Texture3D = {0, s.mipLevels};
+  } else if (s.samples > 1) {
     d.ViewDimension = s.arraySize > 1 ? SRV_DIMENSION_TEXTURE2DMSARRAY : SRV_DIMENSION_TEXTURE2DMS;
     d.Texture2DMSArray = {0, s.arraySize};
   } else if ((s.miscFlags & RESOURCE_MISC_TEXTURECUBE) && s.arraySize > 6) {
@@ -360,7 +454,10 @@ RENDER_TARGET_VIEW_DESC DefaultDesc(Resource* resource, const RENDER_TARGET_VIEW
   RENDER_TARGET_VIEW_DESC d{};
   const TextureShape& s = AsTexture(resource)->shape();
   d.Format = s.format;
-  if (s.samples > 1) {
+  if (s.dimension == RESOURCE_DIMENSION_TEXTURE3D) {
+    d.ViewDimension = RTV_DIMENSION_TEXTURE3D;
+    d.Texture3D = {0, 0, s.depth};
+  } else if (s.samples > 1) {
     d.ViewDimension = s.arraySize > 1 ? RTV_DIMENSION_TEXTURE2DMSARRAY : RTV_DIMENSION_TEXTURE2DMS;
     d.Texture2DMSArray = {0, s.arraySize};
   } else if (s.arraySize > 1) {
@@ -431,8 +528,13 @@ HRESULT UnorderedAccessViewImpl::Create(DeviceImpl* device, Resource* resource, 
     resolved.Buffer = {0, buffer->desc().ByteWidth / stride, 0};
   } else if (TextureStorage* texture = AsTexture(resource)) {
     resolved.Format = texture->shape().format;
-    resolved.ViewDimension = texture->shape().arraySize > 1 ? UAV_DIMENSION_TEXTURE2DARRAY : UAV_DIMENSION_TEXTURE2D;
-    resolved.Texture2DArray = {0, 0, texture->shape().arraySize};
+    if (texture->is3D()) {
+      resolved.ViewDimension = UAV_DIMENSION_TEXTURE3D;
+      resolved.Texture3D = {0, 0, texture->shape().depth};
+    } else {
+      resolved.ViewDimension = texture->shape().arraySize > 1 ? UAV_DIMENSION_TEXTURE2DARRAY : UAV_DIMENSION_TEXTURE2D;
+      resolved.Texture2DArray = {0, 0, texture->shape().arraySize};
+    }
   }
   ComPtr<UnorderedAccessViewImpl> view;
   view.Attach(new UnorderedAccessViewImpl(device, resolved));
@@ -455,7 +557,26 @@ HRESULT UnorderedAccessViewImpl::Initialize(Resource* resource) {
       return hr;
     return CreateCounter(resource);
   }
+  if (std::string reason =
+          CheckVolumeDimension(texture, d.ViewDimension == UAV_DIMENSION_TEXTURE3D, "CreateUnorderedAccessView");
+      !reason.empty())
+    return device().gpu().Refuse(reason);
   VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, d.Texture2D.MipSlice, 1, 0, 1};
+  if (d.ViewDimension == UAV_DIMENSION_TEXTURE3D) {
+    if (!texture) return device().gpu().Refuse("CreateUnorderedAccessView: a TEXTURE3D view needs a 3D texture");
+    // A Vulkan storage view of a 3D image covers every W slice of its level (a
+    // RWTexture3D is a 3D view; 2D-array views of 3D images are for attachments
+    // only), so a view of fewer W slices, which D3D11 allows, is refused here.
+    const UINT wSize = WSliceCount(texture, d.Texture3D.MipSlice, d.Texture3D.FirstWSlice, d.Texture3D.WSize);
+    const UINT depth = texture->MipExtent(std::min(d.Texture3D.MipSlice, texture->shape().mipLevels - 1)).depth;
+    if (d.Texture3D.FirstWSlice != 0 || wSize != depth)
+      return device().gpu().Refuse("CreateUnorderedAccessView: a TEXTURE3D view of W slices " +
+                                   std::to_string(d.Texture3D.FirstWSlice) + "+" + std::to_string(wSize) + " of " +
+                                   std::to_string(depth) + ": this backend's 3D UAVs cover every W slice of their "
+                                   "mip (FirstWSlice 0, WSize -1 or the mip's depth)");
+    return InitTexture(device(), resource, d.Format, VK_IMAGE_VIEW_TYPE_3D, range, VK_IMAGE_USAGE_STORAGE_BIT,
+                       "CreateUnorderedAccessView");
+  }
   bool isArray = d.ViewDimension == UAV_DIMENSION_TEXTURE2DARRAY || d.ViewDimension == UAV_DIMENSION_TEXTURE1DARRAY;
   if (isArray) {
     range.baseArrayLayer = d.Texture2DArray.FirstArraySlice;

@@ -1,6 +1,9 @@
 // Shader-resource, render-target, depth-stencil and unordered-access views.
 #pragma once
 
+#include <utility>
+#include <vector>
+
 #include "device.h"
 #include "resources.h"
 
@@ -22,6 +25,11 @@ class ViewTarget {
   VkImageView imageView() const { return imageView_; }
   VkImageSubresourceRange range() const { return range_; }
   VkBufferView bufferView() const { return bufferView_; }
+  // The image view a shader-resource descriptor of this view uses: imageView(), or
+  // while the texture has a minimum LOD above the view's most detailed level
+  // (SetResourceMinLOD) a variant clamped to it (the latest few kept); VK_NULL_HANDLE
+  // (reads return 0) when the clamp lies past the view's last level. Immediate context only.
+  VkImageView SampledImageView();
   // Structured and raw buffer views bind as storage buffers over this range.
   VkDescriptorBufferInfo bufferRange() const;
 
@@ -51,6 +59,10 @@ class ViewTarget {
   VkBufferView bufferView_ = VK_NULL_HANDLE;
   VkDeviceSize firstByte_ = 0;
   VkDeviceSize byteCount_ = 0;
+  // How imageView_ was made, for its minimum-LOD variants.
+  VkImageViewCreateInfo viewInfo_{};
+  VkImageViewUsageCreateInfo usageInfo_{};
+  std::vector<std::pair<FLOAT, VkImageView>> minLodViews_;
 };
 
 template <class Interface, class Desc>

@@ -324,5 +324,49 @@ TEST_F(EffectTest, WboitPassesComposeOneLayer) {
   EXPECT_EQ((p >> 8) & 0xFF, 0u);
 }
 
+// Texture3D and RWTexture3D variables: one compute pass writes every texel of a volume
+// through a UAV, the next samples each texel's centre through an SRV of it.
+TEST_F(EffectTest, VolumeWrittenThroughRWTexture3DIsSampledThroughTexture3D) {
+  auto effect = FromMemory(R"(
+RWTexture3D<float> Volume;
+Texture3D<float> VolumeRead;
+SamplerState Point { Filter = MIN_MAG_MIP_POINT; };
+RWStructuredBuffer<float> Out;
+[numthreads(2, 2, 2)] void Write(uint3 id : SV_DispatchThreadID) { Volume[id] = id.x + 2 * id.y + 4 * id.z; }
+[numthreads(8, 1, 1)] void Read(uint i : SV_DispatchThreadID) {
+  float3 uvw = (float3(i % 2, (i / 2) % 2, i / 4) + 0.5) / 2;
+  Out[i] = VolumeRead.SampleLevel(Point, uvw, 0);
+}
+technique11 T {
+  pass Write { SetComputeShader(CompileShader(cs_5_0, Write())); }
+  pass Read { SetComputeShader(CompileShader(cs_5_0, Read())); }
+}
+)");
+  ASSERT_TRUE(effect);
+  rhi::TEXTURE3D_DESC desc{2, 2, 2, 1, rhi::DXGI_FORMAT_R32_FLOAT, rhi::USAGE_DEFAULT,
+                           rhi::BIND_UNORDERED_ACCESS | rhi::BIND_SHADER_RESOURCE, 0, 0};
+  ComPtr<rhi::Texture3D> volume;
+  ASSERT_EQ(device->CreateTexture3D(&desc, nullptr, volume.GetAddressOf()), rhi::S_OK);
+  ComPtr<rhi::UnorderedAccessView> uav;
+  ComPtr<rhi::ShaderResourceView> srv;
+  ASSERT_EQ(device->CreateUnorderedAccessView(volume.Get(), nullptr, uav.GetAddressOf()), rhi::S_OK);
+  ASSERT_EQ(device->CreateShaderResourceView(volume.Get(), nullptr, srv.GetAddressOf()), rhi::S_OK);
+  Rw out = MakeRw(8);
+  ASSERT_EQ(effect->GetVariableByName("Volume")->AsUnorderedAccessView()->SetUnorderedAccessView(uav.Get()), rhi::S_OK);
+  ASSERT_EQ(effect->GetVariableByName("VolumeRead")->AsShaderResource()->SetResource(srv.Get()), rhi::S_OK);
+  ASSERT_EQ(effect->GetVariableByName("Out")->AsUnorderedAccessView()->SetUnorderedAccessView(out.uav.Get()), rhi::S_OK);
+  fx::EffectTechnique* technique = effect->GetTechniqueByIndex(0);
+  ASSERT_EQ(technique->GetPassByName("Write")->Apply(0, context.Get()), rhi::S_OK);
+  context->Dispatch(1, 1, 1);
+  // The volume leaves the UAV slot before it is read (D3D11's binding hazard rule).
+  rhi::UnorderedAccessView* none = nullptr;
+  context->CSSetUnorderedAccessViews(0, 1, &none, nullptr);
+  ASSERT_EQ(technique->GetPassByName("Read")->Apply(0, context.Get()), rhi::S_OK);
+  context->Dispatch(1, 1, 1);
+  const std::vector<float> got = ReadBufferAs<float>(out.buffer.Get());
+  for (int i = 0; i < 8; ++i) EXPECT_EQ(got[i], float(i)) << "texel " << i;
+  EXPECT_TRUE(Refusals().empty());
+}
+
 }  // namespace
 }  // namespace effects_test

@@ -1,6 +1,7 @@
 // Cube maps (RESOURCE_MISC_TEXTURECUBE: faces rendered through array-slice
-// render-target views, read through TextureCube and TextureCubeArray views) and
-// GenerateMips (RESOURCE_MISC_GENERATE_MIPS), with D3D11's refusals.
+// render-target views, read through TextureCube and TextureCubeArray views),
+// GenerateMips (RESOURCE_MISC_GENERATE_MIPS) and SetResourceMinLOD
+// (RESOURCE_MISC_RESOURCE_CLAMP), with D3D11's refusals.
 #include "gpu_helpers.h"
 
 namespace rhi_test {
@@ -176,6 +177,125 @@ TEST_F(TextureKindsTest, GenerateMipsRulesAreD3D11s) {
   ClearMessages();
   context->GenerateMips(srv.Get());
   EXPECT_TRUE(RefusedWith("GenerateMips: the view's resource must be a texture created with RESOURCE_MISC_GENERATE_MIPS"));
+}
+
+// A 4x4 texture of 3 mips, each one colour (red, green, blue), with RESOURCE_MISC_RESOURCE_CLAMP.
+class ResourceMinLodTest : public TextureKindsTest {
+ protected:
+  void SetUp() override {
+    TextureKindsTest::SetUp();
+    if (HasFatalFailure()) return;
+    TEXTURE2D_DESC desc{};
+    desc.Width = desc.Height = 4;
+    desc.MipLevels = 3;
+    desc.ArraySize = 1;
+    desc.Format = DXGI_FORMAT_R8G8B8A8_UNORM;
+    desc.SampleDesc = {1, 0};
+    desc.BindFlags = BIND_SHADER_RESOURCE;
+    desc.MiscFlags = RESOURCE_MISC_RESOURCE_CLAMP;
+    const std::vector<uint32_t> mip0(16, kRedPx), mip1(4, kGreenPx), mip2(1, kBluePx);
+    const SUBRESOURCE_DATA data[3] = {{mip0.data(), 16, 0}, {mip1.data(), 8, 0}, {mip2.data(), 4, 0}};
+    ASSERT_EQ(device->CreateTexture2D(&desc, data, texture.GetAddressOf()), S_OK);
+    ASSERT_EQ(device->CreateShaderResourceView(texture.Get(), nullptr, srv.GetAddressOf()), S_OK);
+  }
+
+  // The colour `srv` samples at LOD 0 (SampleLevel with a point sampler).
+  uint32_t SampleAtLod0() {
+    Target target = MakeRenderTarget(1, 1);
+    BindTarget(target.rtv.Get(), 1, 1);
+    ComPtr<SamplerState> sampler = PointSampler();
+    context->PSSetSamplers(0, 1, sampler.GetAddressOf());
+    context->PSSetShaderResources(0, 1, srv.GetAddressOf());
+    if (!ps_)
+      ps_ = PS(R"(Texture2D<float4> t : register(t0);
+        SamplerState s : register(s0);
+        float4 main(float4 pos : SV_Position) : SV_Target { return t.SampleLevel(s, float2(0.5, 0.5), 0); })");
+    DrawFullScreen(ps_.Get());
+    return Pixel(ReadTexture(target.texture.Get()), 1, 0, 0);
+  }
+
+  ComPtr<Texture2D> texture;
+  ComPtr<ShaderResourceView> srv;
+  ComPtr<PixelShader> ps_;
+};
+
+TEST_F(ResourceMinLodTest, SampledLodIsClampedToTheResourceMinimum) {
+  EXPECT_EQ(context->GetResourceMinLOD(texture.Get()), 0.0f) << "the default";
+  EXPECT_EQ(SampleAtLod0(), kRedPx);
+  context->SetResourceMinLOD(texture.Get(), 2.0f);
+  EXPECT_EQ(context->GetResourceMinLOD(texture.Get()), 2.0f);
+  EXPECT_EQ(SampleAtLod0(), kBluePx) << "LOD 0 clamped to mip 2";
+  context->SetResourceMinLOD(texture.Get(), 1.0f);
+  EXPECT_EQ(SampleAtLod0(), kGreenPx);
+  // A view whose levels all lie below the clamp reads 0 (D3D11: an empty set is out of bounds).
+  SHADER_RESOURCE_VIEW_DESC first{};
+  first.Format = DXGI_FORMAT_R8G8B8A8_UNORM;
+  first.ViewDimension = SRV_DIMENSION_TEXTURE2D;
+  first.Texture2D = {0, 1};
+  ASSERT_EQ(device->CreateShaderResourceView(texture.Get(), &first, srv.ReleaseAndGetAddressOf()), S_OK);
+  EXPECT_EQ(SampleAtLod0(), 0u);
+  context->SetResourceMinLOD(texture.Get(), 0.0f);
+  EXPECT_EQ(SampleAtLod0(), kRedPx);
+  EXPECT_TRUE(Refusals().empty());
+}
+
+// Each clamp value gets its own view variant, a few kept: a clamp moving over many values
+// (as texture streaming moves it) samples the right level every time, including values
+// whose variant was dropped and made again.
+TEST_F(ResourceMinLodTest, EveryClampOfALongChainSamplesItsLevel) {
+  TEXTURE2D_DESC desc{};
+  desc.Width = desc.Height = 32;
+  desc.MipLevels = 6;
+  desc.ArraySize = 1;
+  desc.Format = DXGI_FORMAT_R8G8B8A8_UNORM;
+  desc.SampleDesc = {1, 0};
+  desc.BindFlags = BIND_SHADER_RESOURCE;
+  desc.MiscFlags = RESOURCE_MISC_RESOURCE_CLAMP;
+  std::vector<std::vector<uint32_t>> levels;
+  std::vector<SUBRESOURCE_DATA> data;
+  for (UINT mip = 0; mip < 6; ++mip) {
+    const UINT size = 32 >> mip;
+    levels.emplace_back(size * size, RGBA(40 * mip, 255 - 40 * mip, 0, 255));
+    data.push_back({levels.back().data(), size * 4, 0});
+  }
+  ASSERT_EQ(device->CreateTexture2D(&desc, data.data(), texture.ReleaseAndGetAddressOf()), S_OK);
+  ASSERT_EQ(device->CreateShaderResourceView(texture.Get(), nullptr, srv.ReleaseAndGetAddressOf()), S_OK);
+  for (UINT minLod : {1, 2, 3, 4, 5, 1, 2, 5, 0}) {
+    context->SetResourceMinLOD(texture.Get(), FLOAT(minLod));
+    EXPECT_EQ(SampleAtLod0(), RGBA(40 * minLod, 255 - 40 * minLod, 0, 255)) << "MinLOD " << minLod;
+  }
+  EXPECT_TRUE(Refusals().empty());
+}
+
+TEST_F(ResourceMinLodTest, DeferredContextsRecordTheClamp) {
+  ComPtr<DeviceContext> deferred;
+  ASSERT_EQ(device->CreateDeferredContext(0, deferred.GetAddressOf()), S_OK);
+  deferred->SetResourceMinLOD(texture.Get(), 2.0f);
+  EXPECT_EQ(context->GetResourceMinLOD(texture.Get()), 0.0f) << "recorded, not yet executed";
+  ComPtr<CommandList> list;
+  ASSERT_EQ(deferred->FinishCommandList(FALSE, list.GetAddressOf()), S_OK);
+  context->ExecuteCommandList(list.Get(), FALSE);
+  EXPECT_EQ(context->GetResourceMinLOD(texture.Get()), 2.0f);
+  EXPECT_EQ(deferred->GetResourceMinLOD(texture.Get()), 2.0f);
+  EXPECT_EQ(SampleAtLod0(), kBluePx);
+}
+
+TEST_F(ResourceMinLodTest, RulesAreD3D11s) {
+  context->SetResourceMinLOD(texture.Get(), 3.5f);
+  EXPECT_TRUE(RefusedWith("SetResourceMinLOD: MinLOD 3.5"));
+  context->SetResourceMinLOD(texture.Get(), -1.0f);
+  EXPECT_EQ(context->GetResourceMinLOD(texture.Get()), 0.0f) << "refused calls change nothing";
+  ComPtr<Texture2D> unclamped = MakeTexture(4, 4, DXGI_FORMAT_R8G8B8A8_UNORM, BIND_SHADER_RESOURCE);
+  ClearMessages();
+  context->SetResourceMinLOD(unclamped.Get(), 1.0f);
+  EXPECT_TRUE(RefusedWith("the texture was not created with RESOURCE_MISC_RESOURCE_CLAMP"));
+  EXPECT_EQ(context->GetResourceMinLOD(unclamped.Get()), 0.0f);
+  const uint32_t zero = 0;
+  ComPtr<Buffer> buffer = MakeBuffer(BIND_SHADER_RESOURCE, &zero, 4);
+  ClearMessages();
+  context->SetResourceMinLOD(buffer.Get(), 0.0f);
+  EXPECT_TRUE(RefusedWith("pResource must be a texture"));
+  EXPECT_EQ(context->GetResourceMinLOD(buffer.Get()), 0.0f);
 }
 
 }  // namespace

@@ -239,14 +239,77 @@ TEST_F(TextureFilesTest, OneDimensionalTextureFromTheDx10Header) {
   EXPECT_EQ(dimension, rhi::RESOURCE_DIMENSION_TEXTURE1D);
 }
 
-TEST_F(TextureFilesTest, VolumeTexturesAreRefusedWithTheReason) {
-  const auto path = WriteFile("fog.dds", WriteDds({.width = 4, .height = 4, .depth = 2, .format = kRgba8,
-                                                   .caps2 = 0x200000 | 0x200},
-                                                  std::vector<uint8_t>(4 * 4 * 2 * 4)));
+// A legacy-header volume (DDSCAPS2_VOLUME, RGBA8) of 2x2x4 with its full chain (2x2x4,
+// 1x1x2, 1x1x1): a Texture3D with a TEXTURE3D view, every W slice of every level as written.
+TEST_F(TextureFilesTest, VolumeWithAMipChainLoadsEveryWSliceOfEveryLevel) {
+  constexpr UINT kDepths[3] = {4, 2, 1}, kTexels[3] = {4, 1, 1};
+  auto color = [](UINT mip, UINT slice) { return std::array<uint8_t, 4>{uint8_t(10 + 80 * mip + 20 * slice),
+                                                                         uint8_t(60 * slice), uint8_t(100 * mip), 255}; };
+  std::vector<uint8_t> texels;
+  for (UINT mip = 0; mip < 3; ++mip)
+    for (UINT slice = 0; slice < kDepths[mip]; ++slice)
+      for (UINT i = 0; i < kTexels[mip]; ++i) {
+        const auto rgba = color(mip, slice);
+        texels.insert(texels.end(), rgba.begin(), rgba.end());
+      }
+  const auto path = WriteFile("fog.dds", WriteDds({.width = 2, .height = 2, .depth = 4, .mips = 3, .format = kRgba8,
+                                                   .caps2 = 0x200000},
+                                                  texels));
+  ComPtr<rhi::Resource> texture;
   ComPtr<rhi::ShaderResourceView> srv;
-  EXPECT_EQ(rhi::CreateDDSTextureFromFile(device.Get(), path, nullptr, srv.GetAddressOf(), 0, nullptr, &error),
-            rhi::E_NOTIMPL);
-  EXPECT_NE(error.find("fog.dds: a 3D (volume) texture"), std::string::npos) << error;
+  ASSERT_EQ(rhi::CreateDDSTextureFromFile(device.Get(), path, texture.GetAddressOf(), srv.GetAddressOf(), 0, nullptr,
+                                          &error),
+            rhi::S_OK)
+      << error;
+  rhi::RESOURCE_DIMENSION dimension;
+  texture->GetType(&dimension);
+  ASSERT_EQ(dimension, rhi::RESOURCE_DIMENSION_TEXTURE3D);
+  rhi::TEXTURE3D_DESC desc;
+  static_cast<rhi::Texture3D*>(texture.Get())->GetDesc(&desc);
+  EXPECT_EQ(desc.Depth, 4u);
+  EXPECT_EQ(desc.MipLevels, 3u);
+  rhi::SHADER_RESOURCE_VIEW_DESC view;
+  srv->GetDesc(&view);
+  EXPECT_EQ(view.ViewDimension, rhi::SRV_DIMENSION_TEXTURE3D);
+  // Pixel (x, y): texel (0, 0) of W slice x of level y (black past the level's depth).
+  const auto pixels = Draw(srv.Get(), R"(Texture3D t : register(t0);
+    float4 main(float4 p : SV_Position) : SV_Target {
+      uint w, h, d, levels;
+      t.GetDimensions(uint(p.y), w, h, d, levels);
+      return uint(p.x) < d ? t.Load(int4(0, 0, p.x, p.y)) : float4(0, 0, 0, 1); })",
+                           4, 3);
+  for (UINT mip = 0; mip < 3; ++mip)
+    for (UINT slice = 0; slice < kDepths[mip]; ++slice) {
+      const auto rgba = color(mip, slice);
+      const uint8_t rgb[3] = {rgba[0], rgba[1], rgba[2]};
+      ExpectNear(pixels, mip * 4 + slice, rgb, "level " + std::to_string(mip) + " W slice " + std::to_string(slice));
+    }
+  EXPECT_TRUE(Refusals().empty());
+}
+
+// The DX10 header's TEXTURE3D dimension with a block-compressed format: BC1, 4x4x2, one block a slice.
+TEST_F(TextureFilesTest, Bc1VolumeFromTheDx10HeaderDecodesEachWSlice) {
+  std::vector<uint8_t> texels = kRowsBlock;
+  const auto green = Bc1Block(0x07E0, 0x0000, 0);  // every texel c0: pure green
+  texels.insert(texels.end(), green.begin(), green.end());
+  const auto file = WriteDds({.width = 4, .height = 4, .depth = 2, .format = kDx10,
+                              .dxgiFormat = rhi::DXGI_FORMAT_BC1_UNORM, .dimension = 4},
+                             texels);
+  ComPtr<rhi::ShaderResourceView> srv;
+  ASSERT_EQ(rhi::CreateDDSTextureFromMemory(device.Get(), file.data(), file.size(), nullptr, srv.GetAddressOf(), 0,
+                                            nullptr, &error),
+            rhi::S_OK)
+      << error;
+  // Rows 0..3: W slice 0; rows 4..7: W slice 1.
+  const auto pixels = Draw(srv.Get(), R"(Texture3D t : register(t0);
+    float4 main(float4 p : SV_Position) : SV_Target { return t.Load(int4(p.x, uint(p.y) % 4, uint(p.y) / 4, 0)); })",
+                           4, 8);
+  const uint8_t kGreen[3] = {0, 255, 0};
+  for (UINT y = 0; y < 8; ++y)
+    for (UINT x = 0; x < 4; ++x)
+      ExpectNear(pixels, y * 4 + x, y < 4 ? kRowColors[y] : kGreen,
+                 "texel " + std::to_string(x) + "," + std::to_string(y % 4) + " of W slice " + std::to_string(y / 4));
+  EXPECT_TRUE(Refusals().empty());
 }
 
 // Every damaged file fails with "<name>: <problem>" and no device message.
@@ -284,6 +347,14 @@ std::vector<BadFile> BadFiles() {
       {"huge_array", Patched(dx10, 140, 0x80000000), "array size 2147483648 exceeds D3D11's limit of 2048 slices"},
       {"short_dx10", std::vector<uint8_t>(dx10.begin(), dx10.begin() + 140), "truncated: 140 bytes, the DX10 header needs 148"},
       {"partial_cube", Patched(good, 112, 0x200 | 0x400), "a cube map with only some faces"},
+      {"truncated_volume",
+       WriteDds({.width = 2, .height = 2, .depth = 2, .mips = 2, .format = kRgba8, .caps2 = 0x200000},
+                std::vector<uint8_t>(2 * 2 * 2 * 4 + 4 - 1)),
+       "truncated: slice 0 mip 1 needs bytes 160..164 of a 163-byte file (2x2x2, 2 mip levels, 1 slices)"},
+      {"volume_array", Patched(Patched(dx10, 132, 4), 140, 2), "a 3D texture with array size 2"},
+      {"volume_too_deep",
+       WriteDds({.width = 4, .height = 4, .depth = 4096, .format = kRgba8, .caps2 = 0x200000}, {}),
+       "size 4x4x4096 exceeds D3D11's limit of 2048"},
   };
 }
 

@@ -232,7 +232,8 @@ class Parser {
         if (offset + bytes > size_)
           return "truncated: slice " + std::to_string(slice) + " mip " + std::to_string(mip) + " needs bytes " +
                  std::to_string(offset) + ".." + std::to_string(offset + bytes) + " of a " + std::to_string(size_) +
-                 "-byte file (" + std::to_string(t->Width) + "x" + std::to_string(t->Height) + ", " +
+                 "-byte file (" + std::to_string(t->Width) + "x" + std::to_string(t->Height) +
+                 (t->Dimension == RESOURCE_DIMENSION_TEXTURE3D ? "x" + std::to_string(t->Depth) : "") + ", " +
                  std::to_string(t->MipLevels) + " mip levels, " + std::to_string(slices) + " slices)";
         t->Subresources.push_back({data_ + offset, UINT(rowPitch), UINT(slicePitch)});
         offset += bytes;

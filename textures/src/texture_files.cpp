@@ -53,20 +53,26 @@ struct CreateFlags {
   UINT miscFlags = 0;
 };
 
-// The texture a DDS_TEXTURE describes (1D or 2D, arrays, cubes and cube arrays; decoded
-// images are described the same way) and, when asked, its whole-resource SRV (a
-// TEXTURECUBEARRAY view of every cube for a cube array).
+std::string SizeText(const DDS_TEXTURE& dds) {
+  return std::to_string(dds.Width) + "x" + std::to_string(dds.Height) +
+         (dds.Dimension == RESOURCE_DIMENSION_TEXTURE3D ? "x" + std::to_string(dds.Depth) : "");
+}
+
+// The texture a DDS_TEXTURE describes (1D, 2D or 3D, arrays, cubes and cube arrays;
+// decoded images are described the same way) and, when asked, its whole-resource SRV (a
+// TEXTURECUBEARRAY view of every cube for a cube array, a TEXTURE3D view of a volume).
 HRESULT CreateTexture(Device* device, const DDS_TEXTURE& dds, const std::string& name, const CreateFlags& flags,
                       Resource** texture, ShaderResourceView** textureView, std::string* error) {
-  if (dds.Dimension == RESOURCE_DIMENSION_TEXTURE3D)
-    return Fail(E_NOTIMPL,
-                name + ": a 3D (volume) texture, which the RHI cannot create yet (no CreateTexture3D); " +
-                    std::to_string(dds.Width) + "x" + std::to_string(dds.Height) + "x" + std::to_string(dds.Depth),
-                error);
   const UINT slices = dds.ArraySize * (dds.IsCubeMap ? 6 : 1);
   ComPtr<Resource> resource;
   HRESULT hr = S_OK;
-  if (dds.Dimension == RESOURCE_DIMENSION_TEXTURE1D) {
+  if (dds.Dimension == RESOURCE_DIMENSION_TEXTURE3D) {
+    TEXTURE3D_DESC desc{dds.Width, dds.Height, dds.Depth, dds.MipLevels, dds.Format, flags.usage, flags.bindFlags,
+                        flags.cpuAccessFlags, flags.miscFlags};
+    ComPtr<Texture3D> created;
+    hr = device->CreateTexture3D(&desc, dds.Subresources.data(), created.GetAddressOf());
+    resource.Attach(created.Detach());
+  } else if (dds.Dimension == RESOURCE_DIMENSION_TEXTURE1D) {
     TEXTURE1D_DESC desc{dds.Width, dds.MipLevels, slices, dds.Format, flags.usage, flags.bindFlags,
                         flags.cpuAccessFlags, flags.miscFlags};
     ComPtr<Texture1D> created;
@@ -81,8 +87,8 @@ HRESULT CreateTexture(Device* device, const DDS_TEXTURE& dds, const std::string&
     resource.Attach(created.Detach());
   }
   if (FAILED(hr))
-    return Fail(hr, name + ": the device refused the texture (" + FormatName(dds.Format) + ", " +
-                        std::to_string(dds.Width) + "x" + std::to_string(dds.Height) + "; its message says why)",
+    return Fail(hr, name + ": the device refused the texture (" + FormatName(dds.Format) + ", " + SizeText(dds) +
+                        "; its message says why)",
                 error);
   if (textureView) {
     hr = device->CreateShaderResourceView(resource.Get(), nullptr, textureView);
@@ -98,9 +104,10 @@ HRESULT CheckOutputs(Resource** texture, ShaderResourceView** textureView) {
   return (texture || textureView) ? S_OK : E_INVALIDARG;
 }
 
-std::string MaxSizeProblem(UINT width, UINT height, size_t maxsize) {
-  if (maxsize == 0 || (width <= maxsize && height <= maxsize)) return {};
-  return "size " + std::to_string(width) + "x" + std::to_string(height) + " exceeds maxsize " + std::to_string(maxsize);
+std::string MaxSizeProblem(UINT width, UINT height, size_t maxsize, UINT depth = 1) {
+  if (maxsize == 0 || (width <= maxsize && height <= maxsize && depth <= maxsize)) return {};
+  return "size " + std::to_string(width) + "x" + std::to_string(height) +
+         (depth > 1 ? "x" + std::to_string(depth) : "") + " exceeds maxsize " + std::to_string(maxsize);
 }
 
 HRESULT LoadDds(Device* device, const uint8_t* data, size_t size, const std::string& name, size_t maxsize,
@@ -111,7 +118,7 @@ HRESULT LoadDds(Device* device, const uint8_t* data, size_t size, const std::str
   DDS_TEXTURE dds;
   std::string problem;
   if (HRESULT hr = ParseDDS(data, size, name.c_str(), &dds, &problem); FAILED(hr)) return Fail(hr, problem, error);
-  if (std::string tooLarge = MaxSizeProblem(dds.Width, dds.Height, maxsize); !tooLarge.empty())
+  if (std::string tooLarge = MaxSizeProblem(dds.Width, dds.Height, maxsize, dds.Depth); !tooLarge.empty())
     return Fail(E_INVALIDARG, name + ": " + tooLarge, error);
   if (loadFlags & DDS_LOADER_FORCE_SRGB) dds.Format = SrgbTwin(dds.Format);
   if (alphaMode) *alphaMode = dds.AlphaMode;

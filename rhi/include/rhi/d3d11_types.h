@@ -420,6 +420,7 @@ enum RESOURCE_MISC_FLAG : UINT {
   RESOURCE_MISC_DRAWINDIRECT_ARGS = 0x10,
   RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS = 0x20,
   RESOURCE_MISC_BUFFER_STRUCTURED = 0x40,
+  RESOURCE_MISC_RESOURCE_CLAMP = 0x80,  // the texture may be given a minimum LOD (SetResourceMinLOD)
 };
 
 struct BUFFER_DESC {
@@ -449,6 +450,18 @@ struct TEXTURE2D_DESC {
   UINT ArraySize;
   DXGI_FORMAT Format;
   DXGI_SAMPLE_DESC SampleDesc;
+  USAGE Usage;
+  UINT BindFlags;
+  UINT CPUAccessFlags;
+  UINT MiscFlags;
+};
+
+struct TEXTURE3D_DESC {
+  UINT Width;
+  UINT Height;
+  UINT Depth;
+  UINT MipLevels;
+  DXGI_FORMAT Format;
   USAGE Usage;
   UINT BindFlags;
   UINT CPUAccessFlags;
@@ -566,6 +579,7 @@ struct TEX2D_SRV { UINT MostDetailedMip; UINT MipLevels; };
 struct TEX2D_ARRAY_SRV { UINT MostDetailedMip; UINT MipLevels; UINT FirstArraySlice; UINT ArraySize; };
 struct TEX2DMS_SRV { UINT UnusedField_NothingToDefine; };
 struct TEX2DMS_ARRAY_SRV { UINT FirstArraySlice; UINT ArraySize; };
+struct TEX3D_SRV { UINT MostDetailedMip; UINT MipLevels; };
 struct TEXCUBE_SRV { UINT MostDetailedMip; UINT MipLevels; };
 struct TEXCUBE_ARRAY_SRV { UINT MostDetailedMip; UINT MipLevels; UINT First2DArrayFace; UINT NumCubes; };
 
@@ -580,6 +594,7 @@ struct SHADER_RESOURCE_VIEW_DESC {
     TEX2D_ARRAY_SRV Texture2DArray;
     TEX2DMS_SRV Texture2DMS;
     TEX2DMS_ARRAY_SRV Texture2DMSArray;
+    TEX3D_SRV Texture3D;
     TEXCUBE_SRV TextureCube;
     TEXCUBE_ARRAY_SRV TextureCubeArray;
     BUFFEREX_SRV BufferEx;
@@ -592,6 +607,8 @@ struct TEX2D_RTV { UINT MipSlice; };
 struct TEX2D_ARRAY_RTV { UINT MipSlice; UINT FirstArraySlice; UINT ArraySize; };
 struct TEX2DMS_RTV { UINT UnusedField_NothingToDefine; };
 struct TEX2DMS_ARRAY_RTV { UINT FirstArraySlice; UINT ArraySize; };
+// W slices FirstWSlice .. FirstWSlice + WSize - 1 of mip MipSlice (WSize -1: every slice from FirstWSlice).
+struct TEX3D_RTV { UINT MipSlice; UINT FirstWSlice; UINT WSize; };
 
 struct RENDER_TARGET_VIEW_DESC {
   DXGI_FORMAT Format;
@@ -603,6 +620,7 @@ struct RENDER_TARGET_VIEW_DESC {
     TEX2D_ARRAY_RTV Texture2DArray;
     TEX2DMS_RTV Texture2DMS;
     TEX2DMS_ARRAY_RTV Texture2DMSArray;
+    TEX3D_RTV Texture3D;
   };
 };
 
@@ -632,6 +650,7 @@ struct TEX1D_UAV { UINT MipSlice; };
 struct TEX1D_ARRAY_UAV { UINT MipSlice; UINT FirstArraySlice; UINT ArraySize; };
 struct TEX2D_UAV { UINT MipSlice; };
 struct TEX2D_ARRAY_UAV { UINT MipSlice; UINT FirstArraySlice; UINT ArraySize; };
+struct TEX3D_UAV { UINT MipSlice; UINT FirstWSlice; UINT WSize; };
 
 struct UNORDERED_ACCESS_VIEW_DESC {
   DXGI_FORMAT Format;
@@ -642,6 +661,7 @@ struct UNORDERED_ACCESS_VIEW_DESC {
     TEX1D_ARRAY_UAV Texture1DArray;
     TEX2D_UAV Texture2D;
     TEX2D_ARRAY_UAV Texture2DArray;
+    TEX3D_UAV Texture3D;
   };
 };
 

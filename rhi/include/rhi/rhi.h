@@ -108,6 +108,11 @@ class Texture2D : public Resource {
   virtual void GetDesc(TEXTURE2D_DESC* pDesc) = 0;
 };
 
+class Texture3D : public Resource {
+ public:
+  virtual void GetDesc(TEXTURE3D_DESC* pDesc) = 0;
+};
+
 class View : public DeviceChild {
  public:
   virtual void GetResource(Resource** ppResource) = 0;
@@ -320,8 +325,19 @@ class DeviceContext : public DeviceChild {
   virtual void CopyStructureCount(Buffer* pDstBuffer, UINT DstAlignedByteOffset,
                                   UnorderedAccessView* pSrcView) = 0;
   // Fills the view's mip levels below its most detailed one, each the 2x2 box
-  // filter of the level above; the resource needs RESOURCE_MISC_GENERATE_MIPS.
+  // filter of the level above (2x2x2 for 3D textures); the resource needs
+  // RESOURCE_MISC_GENERATE_MIPS.
   virtual void GenerateMips(ShaderResourceView* pShaderResourceView) = 0;
+  // The most detailed mip level shader-resource views of the texture may sample
+  // (texture_misc.cpp). Every SRV of pResource samples with its LOD clamped to at
+  // least MinLOD; levels below it are not accessed, and a view whose levels all lie
+  // below it reads 0. Fractional values blend as a sampler's MinLOD does where the
+  // device has VK_EXT_image_view_min_lod; elsewhere the clamp is MinLOD rounded up
+  // and explicit LODs count from it (docs/API_COVERAGE.md, Notes). The texture
+  // needs RESOURCE_MISC_RESOURCE_CLAMP; MinLOD lies in [0, MipLevels].
+  virtual void SetResourceMinLOD(Resource* pResource, FLOAT MinLOD) = 0;
+  // What SetResourceMinLOD last set (0 for a new resource).
+  virtual FLOAT GetResourceMinLOD(Resource* pResource) = 0;
 
   // Queries
   virtual void Begin(Asynchronous* pAsync) = 0;
@@ -370,6 +386,10 @@ class Device : public Unknown {
                                   Texture1D** ppTexture1D) = 0;
   virtual HRESULT CreateTexture2D(const TEXTURE2D_DESC* pDesc, const SUBRESOURCE_DATA* pInitialData,
                                   Texture2D** ppTexture2D) = 0;
+  // Volume textures: SRVs (TEXTURE3D), RTVs of W-slice ranges (TEXTURE3D: each W slice a
+  // render-target array slice) and UAVs (TEXTURE3D, every W slice of a mip; see views.cpp).
+  virtual HRESULT CreateTexture3D(const TEXTURE3D_DESC* pDesc, const SUBRESOURCE_DATA* pInitialData,
+                                  Texture3D** ppTexture3D) = 0;
 
   virtual HRESULT CreateShaderResourceView(Resource* pResource, const SHADER_RESOURCE_VIEW_DESC* pDesc,
                                            ShaderResourceView** ppSRView) = 0;

@@ -7,8 +7,10 @@
 // DDS: the legacy header (DXT1-5, ATI1/ATI2/BC4U/BC4S/BC5U/BC5S, the D3DFMT numbers of
 // float formats, RGB/luminance/alpha masks of the common 8/16/32-bit layouts) and the DX10
 // extension (any DXGI_FORMAT the RHI declares, BC1-BC7 included); 1D and 2D textures,
-// arrays, cube maps, cube-map arrays (a TEXTURECUBEARRAY view) and mip chains. 3D (volume)
-// textures are refused with the reason: the RHI has no CreateTexture3D yet.
+// arrays, cube maps, cube-map arrays (a TEXTURECUBEARRAY view), volume textures (the
+// legacy header's DDSCAPS2_VOLUME with its depth, or the DX10 header's TEXTURE3D
+// dimension: CreateTexture3D and a TEXTURE3D view) and mip chains (a volume's depth
+// halves with each level, as its width and height do).
 // PNG, JPEG, TGA, BMP (through stb_image): 8-bit RGBA, UNORM or, with WIC_LOADER_FORCE_SRGB,
 // _SRGB; a context argument asks for a full mip chain (as DirectXTK's autogen), computed
 // on the CPU with a 2x2 box filter (in linear light for _SRGB).

@@ -257,28 +257,21 @@ void PSFootprint(FootprintPoint p) {
   RectsOut.Store2(p.particle * 8, uint2(tiles.x | tiles.y << 16, tiles.z | tiles.w << 16));
 }
 
-// The quads of a chunk of the tile's list, their positions as the pixel shader's
-// SV_Position sees them: window x, y, depth z / w, and 1 / w.
+// The quads of a chunk of the tile's list: their vertices, and apart their positions
+// as the rasterizer sees them (window x, y, depth z / w, and 1 / w), which the
+// coverage and depth tests read alone.
 static const uint kChunk = 64;
 groupshared OBJECT_PIXEL ChunkVertices[kChunk * 4];
-// Their positions apart: glslang lays SV_Position out of a struct it also passes between stages.
 groupshared float4 ChunkPositions[kChunk * 4];
 
 float EdgeFunction(float2 a, float2 b, float2 p) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); }
 
-// Whether the triangle a, b, c covers the pixel centre p, and its fragment there:
-// screen-space barycentrics for depth, perspective-correct ones for the attributes.
-bool CoverPixel(OBJECT_PIXEL a, OBJECT_PIXEL b, OBJECT_PIXEL c, float2 p, out OBJECT_PIXEL fragment) {
-  fragment = a;
-  float area = EdgeFunction(a.position.xy, b.position.xy, c.position.xy);
-  if (area == 0) return false;
-  float3 l = float3(EdgeFunction(b.position.xy, c.position.xy, p), EdgeFunction(c.position.xy, a.position.xy, p),
-                    EdgeFunction(a.position.xy, b.position.xy, p)) / area;
-  if (any(l < 0)) return false;
-  float3 q = l * float3(a.position.w, b.position.w, c.position.w);
-  fragment = InterpolateQuad(a, b, c, q / (q.x + q.y + q.z));
-  fragment.position = float4(p, dot(l, float3(a.position.z, b.position.z, c.position.z)), 1);
-  return true;
+// Whether the triangle of window positions a, b, c covers the pixel centre p, and its
+// screen-space barycentrics there.
+bool Covers(float4 a, float4 b, float4 c, float2 p, out float3 barycentrics) {
+  float area = EdgeFunction(a.xy, b.xy, c.xy);
+  barycentrics = float3(EdgeFunction(b.xy, c.xy, p), EdgeFunction(c.xy, a.xy, p), EdgeFunction(a.xy, b.xy, p)) / area;
+  return area != 0 && all(barycentrics >= 0);
 }
 
 [numthreads(kTileSize, kTileSize, 1)]
@@ -306,21 +299,24 @@ void CSBlendTiles(uint3 group : SV_GroupID, uint3 local : SV_GroupThreadID, uint
     GroupMemoryBarrierWithGroupSync();
     uint quads = min(kChunk, end - base);
     for (uint k = 0; k < quads && inside; ++k) {
-      OBJECT_PIXEL f;
-      OBJECT_PIXEL q[4];
-      for (uint i = 0; i < 4; ++i) {
-        q[i] = ChunkVertices[k * 4 + i];
-        q[i].position = ChunkPositions[k * 4 + i];
+      // The strip's triangles (0, 1, 2) and (1, 2, 3); a centre on their shared edge
+      // counts once. Only positions until the pixel is covered and in front.
+      uint v = k * 4;
+      float3 l;
+      if (!Covers(ChunkPositions[v], ChunkPositions[v + 1], ChunkPositions[v + 2], centre, l)) {
+        if (!Covers(ChunkPositions[v + 1], ChunkPositions[v + 2], ChunkPositions[v + 3], centre, l)) continue;
+        v += 1;
       }
-      // The strip's triangles (0, 1, 2) and (1, 2, 3); a centre on their shared edge counts
-      // once. (HLSL's && evaluates both sides: the second test must not overwrite f.)
-      if (!CoverPixel(q[0], q[1], q[2], centre, f))
-        if (!CoverPixel(q[1], q[2], q[3], centre, f)) continue;
-      if (f.position.z < 0 || !(f.position.z < opaqueDepth)) continue;  // the near plane; DepthTestNoWrite (LESS)
-      float3 c, t;
-      float a;
-      ShadeAt(f, c, a, t);
-      BlendFragment(blend, c, a, t, f.position.z);
+      float4 a = ChunkPositions[v], b = ChunkPositions[v + 1], c = ChunkPositions[v + 2];
+      float z = dot(l, float3(a.z, b.z, c.z));
+      if (z < 0 || !(z < opaqueDepth)) continue;  // the near plane; DepthTestNoWrite (LESS)
+      float3 q = l * float3(a.w, b.w, c.w);  // perspective-correct: barycentrics over w
+      OBJECT_PIXEL f = InterpolateQuad(ChunkVertices[v], ChunkVertices[v + 1], ChunkVertices[v + 2], q / (q.x + q.y + q.z));
+      f.position = float4(centre, z, 1);
+      float3 color, transmission;
+      float alpha;
+      ShadeAt(f, color, alpha, transmission);
+      BlendFragment(blend, color, alpha, transmission, z);
     }
   }
   if (inside) Composite[pixel] = EndPixel(blend, opaque);

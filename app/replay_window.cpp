@@ -227,6 +227,7 @@ class ReplayWindow {
   std::unique_ptr<renderer::Translucency> scene_;
   bool recreate_ = false, paused_ = false, quit_ = false, showOverlay_ = true;
   std::string sceneError_;  // why the last recreation failed
+  std::string refusal_;     // why the chosen method does not draw this scene (the last frame stays)
 
   ComPtr<rhi::SwapChain> swapChain_;
   ComPtr<rhi::Texture2D> backBuffer_;
@@ -482,6 +483,7 @@ void ReplayWindow::BuildOverlay() {
   }
   if (!sceneError_.empty())
     ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.4f, 1.0f), "recreating failed: %.60s", sceneError_.c_str());
+  if (!refusal_.empty()) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.4f, 1.0f), "%s", refusal_.c_str());
   ImGui::Text("camera: %s", orbiting_ ? "orbit (C: scripted)" : "scripted (drag/wheel: orbit)");
   ImGui::TextDisabled("1-9 method  D scene  Space pause  H hide  Esc quit");
   ImGui::End();
@@ -578,7 +580,9 @@ int ReplayWindow::Run() {
 
     // The scene: the next frame of the demo, unless paused.
     UpdateOrbitFromMouse();
-    if (!paused_) {
+    const bool accepted = scene_->Accepts(*method_, &refusal_);
+    if (accepted) refusal_.clear();
+    if (!paused_ && accepted) {
       scene_->SetCameraOverride(orbiting_ ? std::optional<renderer::Camera>(orbit_.ToCamera(
                                                       settings_.width, settings_.height,
                                                       scene_->CameraForFrame(scene_->frame())))

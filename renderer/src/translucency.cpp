@@ -351,8 +351,10 @@ Camera Translucency::CameraForFrame(uint32_t n) const {
 
 // A method whose storage proved too small for the frame has grown it: the frame is
 // drawn again, the same frame (FragmentSizing::GrowAndRedraw).
-bool Translucency::RenderFrame(const oit::MethodInfo& method) {
-  if (!Render(method, true)) return false;
+bool Translucency::RenderFrame(const oit::MethodInfo& method) { return RenderComplete(method, true); }
+
+bool Translucency::RenderComplete(const oit::MethodInfo& method, bool advance) {
+  if (!Render(method, advance)) return false;
   if (!impl_->methods.at(method.name).method->FrameNeedsRedraw(impl_->context)) return true;
   ++redrawnFrames_;
   return Render(method, false);
@@ -363,7 +365,7 @@ bool Translucency::RenderFrameAgain(const oit::MethodInfo& method) {
   if (method.order == oit::DrawOrder::BackToFront && !lastUpdateCounted_)
     return error_ = std::string(method.name) + " sorts the live particles, which the last update did not count "
                     "(TranslucencySettings::countParticles)", false;
-  return Render(method, false);
+  return RenderComplete(method, false);
 }
 
 // One frame with `method`; `advance`: the next frame (camera, object updates), else the last one again.

@@ -106,15 +106,19 @@ TEST_P(ComputeTilesTest, ComputeWboitEqualsWboitWithinItsTargetsRounding) {
 INSTANTIATE_TEST_SUITE_P(ParticleScenes, ComputeTilesTest, ::testing::Values("smoke", "fire"));
 
 // Pair buffers of the least size (4,096 pairs; the smoke needs ~14,000): the frame
-// that overflows them is drawn again with them grown, and is complete.
+// that overflows them is drawn again with them grown, and is complete, whether it is
+// the next frame or the last one again (RenderFrameAgain: how replay --compare draws).
 TEST_F(ComputeTilesTest, PairBuffersTooSmallGrowAndTheFrameIsDrawnAgain) {
   TranslucencySettings s = Settings("smoke");
   s.fragmentStorage.tilePairsPerQuad = 0;
-  auto t = Replay(s, "compute-sorted", 40);
-  ASSERT_TRUE(t);
-  EXPECT_GE(t->redrawnFrames(), 1u);
-  const std::vector<uint8_t> compute = t->ReadFrame(), sorted = Again(*t, "sorted");
-  ExpectSortedImage(Compare(compute, sorted), compute.size() / 4);
+  for (bool again : {false, true}) {
+    SCOPED_TRACE(again ? "RenderFrameAgain" : "RenderFrame");
+    auto t = Replay(s, again ? "alpha" : "compute-sorted", 40);
+    ASSERT_TRUE(t);
+    const std::vector<uint8_t> compute = again ? Again(*t, "compute-sorted") : t->ReadFrame();
+    EXPECT_GE(t->redrawnFrames(), 1u);
+    ExpectSortedImage(Compare(compute, Again(*t, "sorted")), compute.size() / 4);
+  }
 }
 
 // The passes of each phase in order (the effect passes' "technique/pass" markers),

@@ -144,6 +144,9 @@ class Translucency {
   bool Initialize(rhi::Device* device, rhi::DeviceContext* context, const TranslucencySettings& settings);
   MethodState* Prepare(const oit::MethodInfo& method);
   bool Render(const oit::MethodInfo& method, bool advance);
+  // Render, then the same frame again where the method's storage proved too small for
+  // it and has grown (Method::FrameNeedsRedraw), so that no frame is left incomplete.
+  bool RenderComplete(const oit::MethodInfo& method, bool advance);
   bool PrepareVisibilityBuffer();
   void OpaquePass(bool visibilityBuffer);
   void DrawBackdrop(rhi::RenderTargetView* color, rhi::DepthStencilView* depth);

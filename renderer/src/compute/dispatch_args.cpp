@@ -23,24 +23,7 @@ bool DispatchArgs::Initialize(Device* device, uint32_t slots, std::string* error
     return false;
   }
   slots_ = slots;
-  const UINT words = slots * kSlotBytes / 4;
-  const BUFFER_DESC desc{slots * kSlotBytes,
-                         USAGE_DEFAULT,
-                         BIND_UNORDERED_ACCESS | BIND_SHADER_RESOURCE,
-                         0,
-                         RESOURCE_MISC_DRAWINDIRECT_ARGS | RESOURCE_MISC_BUFFER_ALLOW_RAW_VIEWS,
-                         0};
-  UNORDERED_ACCESS_VIEW_DESC u{};
-  u.Format = DXGI_FORMAT_R32_TYPELESS;
-  u.ViewDimension = UAV_DIMENSION_BUFFER;
-  u.Buffer = {0, words, BUFFER_UAV_FLAG_RAW};
-  SHADER_RESOURCE_VIEW_DESC s{};
-  s.Format = DXGI_FORMAT_R32_TYPELESS;
-  s.ViewDimension = SRV_DIMENSION_BUFFEREX;
-  s.BufferEx = {0, words, BUFFEREX_SRV_FLAG_RAW};
-  if (FAILED(device->CreateBuffer(&desc, nullptr, buffer_.GetAddressOf())) ||
-      FAILED(device->CreateUnorderedAccessView(buffer_.Get(), &u, uav_.GetAddressOf())) ||
-      FAILED(device->CreateShaderResourceView(buffer_.Get(), &s, srv_.GetAddressOf()))) {
+  if (!args_.CreateRaw(device, slots * kSlotBytes / 4, RESOURCE_MISC_DRAWINDIRECT_ARGS)) {
     *error = "dispatch args: creating the argument buffer failed";
     return false;
   }
@@ -77,8 +60,8 @@ bool DispatchArgs::Write(DeviceContext* ctx, UnorderedAccessView* count, uint32_
   SetUint(effect_.Get(), "MaxCount", maxCount);
   SetUint(effect_.Get(), "ArgsOffset", offset(slot));
   SetUav(effect_.Get(), "Count", count);
-  SetUav(effect_.Get(), "Args", uav_.Get());
-  UnbindFromComputeReads(ctx, buffer_.Get());  // IndirectArgs of the dispatches sized by the last Write
+  SetUav(effect_.Get(), "Args", args_.uav.Get());
+  UnbindFromComputeReads(ctx, args_.buffer.Get());  // IndirectArgs of the dispatches sized by the last Write
   write_->Apply(0, ctx);
   ctx->Dispatch(1, 1, 1);
   UnorderedAccessView* none[2] = {};
@@ -87,12 +70,12 @@ bool DispatchArgs::Write(DeviceContext* ctx, UnorderedAccessView* count, uint32_
 }
 
 void DispatchArgs::Bind(fx::Effect* effect, uint32_t slot) const {
-  effect->GetVariableByName("IndirectArgs")->AsShaderResource()->SetResource(srv_.Get());
+  effect->GetVariableByName("IndirectArgs")->AsShaderResource()->SetResource(args_.srv.Get());
   SetUint(effect, "IndirectArgsOffset", offset(slot));
 }
 
 void DispatchArgs::Dispatch(DeviceContext* ctx, uint32_t slot) const {
-  ctx->DispatchIndirect(buffer_.Get(), offset(slot));
+  ctx->DispatchIndirect(args_.buffer.Get(), offset(slot));
 }
 
 }  // namespace renderer::compute

@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "oit/fragment_buffers.h"  // oit::ViewedBuffer
+#include "renderer/compute/viewed_buffer.h"
 #include "renderer/effect_files.h"
 
 namespace renderer::compute {
@@ -21,7 +21,7 @@ uint32_t Blocks(uint32_t n) { return (n + kScanBlock - 1) / kScanBlock; }
 // it adds back.
 struct PrefixScan::Level {
   uint32_t length = 0;
-  oit::ViewedBuffer sums, scannedSums;
+  ViewedBuffer sums, scannedSums;
 };
 
 PrefixScan::PrefixScan() = default;

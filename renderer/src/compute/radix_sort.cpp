@@ -4,7 +4,7 @@
 #include <algorithm>
 
 #include "compute/effect_values.h"
-#include "oit/fragment_buffers.h"  // oit::ViewedBuffer
+#include "renderer/compute/viewed_buffer.h"
 #include "renderer/effect_files.h"
 
 namespace renderer::compute {
@@ -24,9 +24,9 @@ uint32_t DigitPasses(uint32_t keyBits) {
 }  // namespace
 
 struct RadixSort::Buffers {
-  oit::ViewedBuffer keys, values;  // the other side of each pass
-  oit::ViewedBuffer counts;        // kRadix x maxBlocks digit counts, digit-major
-  oit::ViewedBuffer offsets;       // their exclusive scan
+  ViewedBuffer keys, values;  // the other side of each pass
+  ViewedBuffer counts;        // kRadix x maxBlocks digit counts, digit-major
+  ViewedBuffer offsets;       // their exclusive scan
 };
 
 RadixSort::RadixSort() = default;

@@ -9,23 +9,12 @@
 #include <functional>
 #include <string>
 
+#include "renderer/compute/viewed_buffer.h"
 #include "renderer/oit/method.h"
 
 namespace renderer::oit {
 
-// A buffer with a UAV and an SRV of all of it: raw (R32 words) or structured.
-struct ViewedBuffer {
-  rhi::ComPtr<rhi::Buffer> buffer;
-  rhi::ComPtr<rhi::UnorderedAccessView> uav;
-  rhi::ComPtr<rhi::ShaderResourceView> srv;
-  uint64_t bytes = 0;
-
-  // `words` 32-bit words, ByteAddressBuffer / RWByteAddressBuffer.
-  bool CreateRaw(rhi::Device* device, uint32_t words);
-  // `count` elements of `stride` bytes; with a hidden counter
-  // (IncrementCounter) when `counter`.
-  bool CreateStructured(rhi::Device* device, uint32_t count, uint32_t stride, bool counter);
-};
+using compute::ViewedBuffer;
 
 // The resolve draws one object's full-screen pass: true, or false with the
 // reason.

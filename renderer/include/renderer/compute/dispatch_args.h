@@ -9,6 +9,7 @@
 #include <string>
 
 #include "fx/effect.h"
+#include "renderer/compute/viewed_buffer.h"
 #include "rhi/rhi.h"
 
 namespace renderer::compute {
@@ -40,7 +41,7 @@ class DispatchArgs {
   // context->DispatchIndirect(buffer(), offset(slot)).
   void Dispatch(rhi::DeviceContext* context, uint32_t slot) const;
 
-  rhi::Buffer* buffer() const { return buffer_.Get(); }
+  rhi::Buffer* buffer() const { return args_.buffer.Get(); }
   static uint32_t offset(uint32_t slot) { return slot * kSlotBytes; }
   uint32_t slots() const { return slots_; }
   uint64_t MemoryBytes() const { return uint64_t(slots_) * kSlotBytes; }
@@ -50,9 +51,7 @@ class DispatchArgs {
   bool Initialize(rhi::Device* device, uint32_t slots, std::string* error);
 
   uint32_t slots_ = 0;
-  rhi::ComPtr<rhi::Buffer> buffer_;
-  rhi::ComPtr<rhi::UnorderedAccessView> uav_;
-  rhi::ComPtr<rhi::ShaderResourceView> srv_;
+  ViewedBuffer args_;
   rhi::ComPtr<fx::Effect> effect_;
   fx::EffectPass* write_ = nullptr;
 };

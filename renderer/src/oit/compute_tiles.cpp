@@ -108,12 +108,18 @@ class ComputeTilesMethod final : public Method {
   // The frame's pairs, read when its passes are recorded (the CPU waits for them):
   // more than the pair buffers held, they grow to 1.5x the total and the frame is
   // drawn again, so that no frame is ever shown with pairs missing.
+  // Pairs that cannot be had (more than a buffer of words holds) are counted as lost.
   bool FrameNeedsRedraw(rhi::DeviceContext* ctx) override {
     const uint32_t total = readback_.ReadNow(ctx, pairTotal_.buffer.Get());
+    lostPairs_ = 0;
     if (total <= pairCapacity_) return false;
     std::string error;
-    return CreatePairs(uint32_t(std::min<uint64_t>(uint64_t(total) * 3 / 2, UINT32_MAX / 4)), &error);
+    if (CreatePairs(uint32_t(std::min<uint64_t>(uint64_t(total) * 3 / 2, UINT32_MAX / 4)), &error)) return true;
+    lostPairs_ = total - pairCapacity_;
+    return false;
   }
+  // (tile, particle) pairs the last frame could not store: each a particle missing from a tile.
+  uint64_t LostFragments() const override { return lostPairs_; }
 
  private:
   struct Composite {
@@ -249,6 +255,7 @@ class ComputeTilesMethod final : public Method {
   const MethodInfo* info_ = nullptr;
   rhi::Device* device_ = nullptr;
   uint32_t width_ = 0, height_ = 0, tilesX_ = 0, tilesY_ = 0, capacity_ = 0, pairCapacity_ = 0;
+  uint64_t lostPairs_ = 0;
   bool sortsByDepth_ = false;
   OutputMergerArithmetic arithmetic_;  // the blends the Blend pass replays
   std::vector<std::string> passNames_;

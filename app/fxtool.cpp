@@ -755,6 +755,8 @@ int Run(const Options& o) {
     std::fprintf(stderr, "%s:0:0: error: cannot open the effect file\n", o.file.c_str());
     return 1;
   }
+  // Before the device: BadValue exits, and a live device at exit is a leak (./run sanitize).
+  if (std::string error; !o.outDir.empty() && !cli::MakeFolder("--out", o.outDir, &error)) BadValue(error);
   rhi::DEVICE_OPTIONS dopt;
   dopt.EnableValidation = o.validation ? rhi::TRUE : rhi::FALSE;
   dopt.OnMessage = [](rhi::MESSAGE_CATEGORY, rhi::MESSAGE_SEVERITY severity, const char* text) {
@@ -1109,7 +1111,6 @@ int Run(const Options& o) {
     // Read back, save, print.
     std::string json = "{";
     bool firstKey = true;
-    if (std::string error; !o.outDir.empty() && !cli::MakeFolder("--out", o.outDir, &error)) BadValue(error);
     std::string storedJson;
     for (size_t i = 0; i < o.targets.size(); ++i) {
       std::vector<rhi::reference::Float4> pixels;

@@ -9,6 +9,11 @@ include(CMakePackageConfigHelpers)
 add_library(d3d11_on_vulkan INTERFACE)
 target_link_libraries(d3d11_on_vulkan INTERFACE rhi hlsl_compiler fx_runtime texture_files)
 add_library(d3d11_on_vulkan::d3d11_on_vulkan ALIAS d3d11_on_vulkan)
+# A sanitized build (./run sanitize) installs sanitized static libraries: a program linking
+# them needs the sanitizers' runtimes, so the package says so (tests/install links such a one).
+if(SANITIZE)
+  target_link_options(d3d11_on_vulkan INTERFACE -fsanitize=address,undefined)
+endif()
 
 # The static libraries' private dependencies (rhi_spirv, rhi_states) are part of the link.
 install(TARGETS d3d11_on_vulkan rhi rhi_spirv rhi_states hlsl_compiler fx_frontend fx_runtime texture_files

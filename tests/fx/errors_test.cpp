@@ -141,5 +141,16 @@ TEST(EffectErrors, SyntaxErrors) {
   EXPECT_EQ(FirstError("Texture2D t = 1;"), "test.fx:1:13: a texture or buffer cannot have an initializer");
 }
 
+// fxc's X3502; glslang 12 would segfault on the InputPatch<T, 0> (docs/FUZZING.md, finding 1).
+TEST(EffectErrors, PatchSizesOutsideOneTo32AreRefused) {
+  EXPECT_EQ(FirstError("struct V { float4 p : POSITION; };\n"
+                       "V HS(InputPatch<V, 0> patch, uint i : SV_OutputControlPointID) { return patch[i]; }\n"),
+            "test.fx:2:20: InputPatch takes 1 to 32 control points, not 0");
+  EXPECT_EQ(FirstError("struct V { float4 p : POSITION; };\n"
+                       "#define POINTS 33\n"
+                       "void DS(const OutputPatch<V, POINTS> patch) {}\n"),
+            "test.fx:3:30: OutputPatch takes 1 to 32 control points, not 33");
+}
+
 }  // namespace
 }  // namespace fx

@@ -174,6 +174,7 @@ class EffectParser {
   void ParseParameter(FunctionInfo& f, size_t begin, size_t end);
   bool IsIdentAt(size_t index, std::string_view name) const;
   void RefuseD3D9TextureFunctions(size_t begin, size_t end);  // tokens of a function body
+  void CheckPatchSizes(size_t begin, size_t end);              // tokens of a parameter
   // The entry point glslang compiles for `function` with `args` bound to its
   // uniform parameters (defaults appended to `args`); generates a variant when needed.
   std::string EntryPointFor(const Token& at, const std::string& function, std::vector<std::string>& args);

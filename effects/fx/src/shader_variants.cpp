@@ -12,6 +12,8 @@
 // function (`PS()` and `PS(uniform int index)`) always goes through a wrapper,
 // even without uniform arguments: glslang finds no entry point by an
 // overloaded name, and the wrapper's call picks the overload.
+#include <cstdlib>
+
 #include "effect_parser_impl.h"
 
 namespace fx {
@@ -78,6 +80,7 @@ void EffectParser::ParseParameter(FunctionInfo& f, size_t begin, size_t end) {
     if (t.text == ")" || t.text == "]" || t.text == "}") --depth;
   }
   stop = std::min(stop, declEnd);
+  CheckPatchSizes(begin, declEnd);
   FunctionInfo::Param p;
   p.text = Spell(begin, declEnd);
   if (declEnd < end) p.defaultValue = Spell(declEnd + 1, end);
@@ -90,6 +93,21 @@ void EffectParser::ParseParameter(FunctionInfo& f, size_t begin, size_t end) {
   if (stop > begin && t_[stop - 1].kind == TokenKind::Identifier) p.name = t_[stop - 1].text;
   if (p.name.empty()) Fatal(t_[begin], "cannot read the parameter '" + p.text + "'");
   f.params.push_back(std::move(p));
+}
+
+// fxc refuses a patch of 0 or more than 32 control points (X3502); glslang 12 segfaults
+// on an InputPatch<T, 0> hull shader (docs/FUZZING.md, finding 1), so it must not see one.
+void EffectParser::CheckPatchSizes(size_t begin, size_t end) {
+  for (size_t i = begin; i + 5 < end; ++i) {
+    if (!(IsIdentAt(i, "InputPatch") || IsIdentAt(i, "OutputPatch")) || !IsPunctAt(i + 1, "<")) continue;
+    size_t comma = i + 2;
+    while (comma < end && !IsPunctAt(comma, ",") && !IsPunctAt(comma, ">")) ++comma;
+    if (comma + 1 >= end || !IsPunctAt(comma, ",") || t_[comma + 1].kind != TokenKind::Number) continue;
+    const Token& size = t_[comma + 1];
+    const unsigned long points = std::strtoul(size.text.c_str(), nullptr, 0);
+    if (points < 1 || points > 32)
+      Error(size, t_[i].text + " takes 1 to 32 control points, not " + size.text);
+  }
 }
 
 // tex2D(s, uv) and its kin sample D3D9's combined samplers, which shader model

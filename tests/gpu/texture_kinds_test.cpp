@@ -13,17 +13,23 @@ using namespace rhi;
 const Color kFaceColors[6] = {kRed, kGreen, kBlue, kWhite, {1, 1, 0, 1}, {0, 1, 1, 1}};
 const uint32_t kFacePixels[6] = {kRedPx, kGreenPx, kBluePx, kWhitePx, RGBA(255, 255, 0, 255), RGBA(0, 255, 255, 255)};
 
+
+// A square R8G8B8A8_UNORM texture's desc, single-sampled.
+TEXTURE2D_DESC SquareRgba8(UINT size, UINT mipLevels, UINT arraySize, UINT bindFlags, UINT miscFlags) {
+  TEXTURE2D_DESC desc{};
+  desc.Width = desc.Height = size;
+  desc.MipLevels = mipLevels;
+  desc.ArraySize = arraySize;
+  desc.Format = DXGI_FORMAT_R8G8B8A8_UNORM;
+  desc.SampleDesc = {1, 0};
+  desc.BindFlags = bindFlags;
+  desc.MiscFlags = miscFlags;
+  return desc;
+}
 class TextureKindsTest : public RhiGpuTest {
  protected:
   static TEXTURE2D_DESC CubeDesc(UINT size, UINT cubes) {
-    TEXTURE2D_DESC desc{};
-    desc.Width = desc.Height = size;
-    desc.MipLevels = 1;
-    desc.ArraySize = 6 * cubes;
-    desc.Format = DXGI_FORMAT_R8G8B8A8_UNORM;
-    desc.SampleDesc = {1, 0};
-    desc.BindFlags = BIND_RENDER_TARGET | BIND_SHADER_RESOURCE;
-    desc.MiscFlags = RESOURCE_MISC_TEXTURECUBE;
+    TEXTURE2D_DESC desc = SquareRgba8(size, 1, 6 * cubes, BIND_RENDER_TARGET | BIND_SHADER_RESOURCE, RESOURCE_MISC_TEXTURECUBE);
     return desc;
   }
 
@@ -128,14 +134,7 @@ TEST_F(TextureKindsTest, CubeRulesAreD3D11s) {
 }
 
 TEST_F(TextureKindsTest, GenerateMipsFillsEachLevelWithTheBoxFilterOfTheOneAbove) {
-  TEXTURE2D_DESC desc{};
-  desc.Width = desc.Height = 4;
-  desc.MipLevels = 3;
-  desc.ArraySize = 1;
-  desc.Format = DXGI_FORMAT_R8G8B8A8_UNORM;
-  desc.SampleDesc = {1, 0};
-  desc.BindFlags = BIND_RENDER_TARGET | BIND_SHADER_RESOURCE;
-  desc.MiscFlags = RESOURCE_MISC_GENERATE_MIPS;
+  TEXTURE2D_DESC desc = SquareRgba8(4, 3, 1, BIND_RENDER_TARGET | BIND_SHADER_RESOURCE, RESOURCE_MISC_GENERATE_MIPS);
   ComPtr<Texture2D> texture;
   ASSERT_EQ(device->CreateTexture2D(&desc, nullptr, texture.GetAddressOf()), S_OK);
   // Red values per 2x2 block with means 90, 250, 26, 62 (their mean: 107). Every pair along
@@ -158,14 +157,7 @@ TEST_F(TextureKindsTest, GenerateMipsFillsEachLevelWithTheBoxFilterOfTheOneAbove
 }
 
 TEST_F(TextureKindsTest, GenerateMipsRulesAreD3D11s) {
-  TEXTURE2D_DESC desc{};
-  desc.Width = desc.Height = 4;
-  desc.MipLevels = 0;
-  desc.ArraySize = 1;
-  desc.Format = DXGI_FORMAT_R8G8B8A8_UNORM;
-  desc.SampleDesc = {1, 0};
-  desc.BindFlags = BIND_SHADER_RESOURCE;
-  desc.MiscFlags = RESOURCE_MISC_GENERATE_MIPS;
+  TEXTURE2D_DESC desc = SquareRgba8(4, 0, 1, BIND_SHADER_RESOURCE, RESOURCE_MISC_GENERATE_MIPS);
   ComPtr<Texture2D> texture;
   EXPECT_EQ(device->CreateTexture2D(&desc, nullptr, texture.GetAddressOf()), E_INVALIDARG);
   EXPECT_TRUE(RefusedWith("RESOURCE_MISC_GENERATE_MIPS needs BIND_SHADER_RESOURCE and BIND_RENDER_TARGET"));
@@ -185,14 +177,7 @@ class ResourceMinLodTest : public TextureKindsTest {
   void SetUp() override {
     TextureKindsTest::SetUp();
     if (HasFatalFailure()) return;
-    TEXTURE2D_DESC desc{};
-    desc.Width = desc.Height = 4;
-    desc.MipLevels = 3;
-    desc.ArraySize = 1;
-    desc.Format = DXGI_FORMAT_R8G8B8A8_UNORM;
-    desc.SampleDesc = {1, 0};
-    desc.BindFlags = BIND_SHADER_RESOURCE;
-    desc.MiscFlags = RESOURCE_MISC_RESOURCE_CLAMP;
+    TEXTURE2D_DESC desc = SquareRgba8(4, 3, 1, BIND_SHADER_RESOURCE, RESOURCE_MISC_RESOURCE_CLAMP);
     const std::vector<uint32_t> mip0(16, kRedPx), mip1(4, kGreenPx), mip2(1, kBluePx);
     const SUBRESOURCE_DATA data[3] = {{mip0.data(), 16, 0}, {mip1.data(), 8, 0}, {mip2.data(), 4, 0}};
     ASSERT_EQ(device->CreateTexture2D(&desc, data, texture.GetAddressOf()), S_OK);
@@ -243,14 +228,7 @@ TEST_F(ResourceMinLodTest, SampledLodIsClampedToTheResourceMinimum) {
 // (as texture streaming moves it) samples the right level every time, including values
 // whose variant was dropped and made again.
 TEST_F(ResourceMinLodTest, EveryClampOfALongChainSamplesItsLevel) {
-  TEXTURE2D_DESC desc{};
-  desc.Width = desc.Height = 32;
-  desc.MipLevels = 6;
-  desc.ArraySize = 1;
-  desc.Format = DXGI_FORMAT_R8G8B8A8_UNORM;
-  desc.SampleDesc = {1, 0};
-  desc.BindFlags = BIND_SHADER_RESOURCE;
-  desc.MiscFlags = RESOURCE_MISC_RESOURCE_CLAMP;
+  TEXTURE2D_DESC desc = SquareRgba8(32, 6, 1, BIND_SHADER_RESOURCE, RESOURCE_MISC_RESOURCE_CLAMP);
   std::vector<std::vector<uint32_t>> levels;
   std::vector<SUBRESOURCE_DATA> data;
   for (UINT mip = 0; mip < 6; ++mip) {

@@ -144,32 +144,12 @@ ByteAddressBuffer TileEnd;
 ByteAddressBuffer PairParticles;
 RWTexture2D<float4> Composite : register(u0);  // R8G8B8A8_UNORM, copied into the frame
 
-// The output merger's arithmetic, as this device does it (UnormRoundsEachTerm,
-// HalfRoundsTowardZero: renderer/output_merger_probe.h). D3D11 leaves blend precision
-// to the hardware, at the target format's or better.
-uint4 ToUnorm8(float4 x) { return uint4(floor(saturate(x) * 255.0 + 0.5)); }
-uint4 MulUnorm8(uint4 x, uint4 y) {  // round(x * y / 255)
-  uint4 p = x * y + 128;
-  return (p + (p >> 8)) >> 8;
-}
-// A blend into an 8-bit UNORM target: dst' = src * srcFactor + dst * (1 - inverse),
-// all in [0, 1] (the destination factor an INV_* factor, or ONE with inverse 0); `dst`
-// holds 8-bit values. The source's values and the factors are taken in 8 bits (an
-// 8-bit INV_* factor is 255 minus its value's 8 bits), then each product is rounded to
-// 8 bits, or their exact sum once.
+#include "output_merger.hlsli"
+// The output merger's arithmetic as this device does it (renderer/output_merger_probe.h).
 uint4 BlendUnorm8(float4 src, float4 srcFactor, uint4 dst, float4 inverse) {
-  uint4 s = ToUnorm8(src), f = ToUnorm8(srcFactor), g = 255 - ToUnorm8(inverse);
-  if (UnormRoundsEachTerm != 0) return min(MulUnorm8(s, f) + MulUnorm8(dst, g), 255);
-  return ToUnorm8((s * f + dst * g) / 65025.0);
+  return BlendUnorm8(src, srcFactor, dst, inverse, UnormRoundsEachTerm != 0);
 }
-// x as an R16G16B16A16_FLOAT target stores it: a sum past the largest half held there
-// (the paper's weights overflow it in dense smoke), the others rounded toward zero or
-// to nearest even. The sums are never negative.
-float4 Half(float4 x) {
-  uint4 h = f32tof16(min(x, 65504.0));  // to nearest even
-  float4 nearest = f16tof32(h);
-  return HalfRoundsTowardZero != 0 && nearest > x ? f16tof32(h - 1) : nearest;
-}
+float4 Half(float4 x) { return Half(x, HalfRoundsTowardZero != 0); }
 
 #if TILE_BLEND == TILE_BLEND_OVER
 // `sorted`'s OVER (alpha.fxh's Over, or the object's additive OVER) into the

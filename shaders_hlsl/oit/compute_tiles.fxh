@@ -174,6 +174,7 @@ float4 EndPixel(PixelBlend b, float4 opaque) { return b.frame / 255.0; }
 
 #elif TILE_BLEND == TILE_BLEND_WBOIT
 #include "wboit_weight.hlsli"
+#include "weighted_compose.fxh"
 // Table 1 per fragment (accum ONE, ONE into R16G16B16A16_FLOAT; revealage ZERO,
 // INV_SRC_COLOR into R8_UNORM), then PSCompose (weighted_compose.fxh) through
 // Table 2 (SRC_ALPHA, INV_SRC_ALPHA) over the frame.
@@ -192,7 +193,7 @@ void BlendFragment(inout PixelBlend b, float3 c, float a, float3 t, float z) {
   b.revealage = BlendUnorm8(saturate(a).xxxx, 0, b.revealage.xxxx, saturate(a)).r;
 }
 float4 EndPixel(PixelBlend b, float4 opaque) {
-  float4 src = float4(b.accum.rgb / max(b.accum.a, 0.0001), 1.0 - b.revealage / 255.0);
+  float4 src = WeightedComposite(b.accum, b.revealage / 255.0);
   src = saturate(src);
   return BlendUnorm8(src, src.aaaa, ToUnorm8(opaque), src.a) / 255.0;
 }

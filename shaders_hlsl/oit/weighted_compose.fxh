@@ -9,11 +9,15 @@
 Texture2D<float4> Accum;      // R16G16B16A16_FLOAT: the sum of (c*a, a)*w
 Texture2D<float4> Revealage;  // R8_UNORM: the product of (1 - a)
 
+// What the composing pass outputs for a pixel's accum and revealage (also the
+// compute-tile WBOIT's, compute_tiles.fxh).
+float4 WeightedComposite(float4 accum, float revealage) {
+  return float4(accum.rgb / max(accum.a, 0.0001), 1.0 - revealage);
+}
+
 float4 PSCompose(float4 pos : SV_Position) : SV_Target {
   int3 p = int3(pos.xy, 0);
-  float4 accum = Accum.Load(p);
-  float r = Revealage.Load(p).r;
-  return float4(accum.rgb / max(accum.a, 0.0001), 1.0 - r);
+  return WeightedComposite(Accum.Load(p), Revealage.Load(p).r);
 }
 
 #define COMPOSE_PASS(blend)                                   \
